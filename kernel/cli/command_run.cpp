@@ -1,0 +1,45 @@
+#include <unistd.h>
+
+#include <filesystem>
+#include <ostream>
+
+#include "../run/output_sink.hpp"
+#include "../run/scheduler.hpp"
+#include "../scene/builder.hpp"
+#include "commands.hpp"
+
+namespace moreau::kernel {
+
+int command_run(const RunArgs& args, std::ostream& out, std::ostream& err) {
+  return guarded(err, [&] {
+    auto world = build_world(args.scene);
+    const std::string path = args.out ? *args.out : world->output.file;
+    RunOptions opt;
+    std::optional<long> continue_after;
+    if (args.restart) {
+      opt.first_step = load_restart(*world, *args.restart, args.restart_frame);
+      continue_after = opt.first_step;
+      // Continuing in the same file: its frame of the restart step is there already.
+      std::error_code ec;
+      opt.write_first_frame = !std::filesystem::equivalent(*args.restart, path, ec);
+    }
+    if (args.steps) opt.steps = *args.steps;
+    std::unique_ptr<FrameSink> sink = open_output(*world, path, continue_after);
+    opt.sink = sink.get();
+    if (!args.quiet) {
+      opt.progress = &err;
+      opt.progress_terminal = isatty(STDERR_FILENO) != 0;
+    }
+    Scheduler scheduler(*world);
+    RunSummary sum = scheduler.run(opt);
+    if (!args.quiet) {
+      sum.timer.print(err, sum.last_step - sum.first_step);
+      if (sum.stopped_by_hook) err << "stopped by a hook: " << sum.stop_reason << "\n";
+    }
+    out << "wrote " << std::filesystem::absolute(path).string() << " (steps " << sum.first_step << " to "
+        << sum.last_step << ", t = " << static_cast<double>(sum.last_step) * world->h << " s)\n";
+    return 0;
+  });
+}
+
+}  // namespace moreau::kernel

@@ -1,0 +1,160 @@
+#include "scheduler.hpp"
+
+#include <algorithm>
+#include <cmath>
+#include <moreau/error.hpp>
+#include <moreau/imposed_velocity.hpp>
+#include <ostream>
+
+#include "progress.hpp"
+
+namespace moreau::kernel {
+
+namespace {
+
+class Context : public HookContext {
+ public:
+  Context(StepContext& step, Stage stage, When when, std::string& stop)
+      : step_(step), stage_(stage), when_(when), stop_(stop) {}
+  Stage stage() const override { return stage_; }
+  When when() const override { return when_; }
+  long step() const override { return step_.step; }
+  double time() const override { return step_.time; }
+  double time_step() const override { return step_.h; }
+  const State& state() const override { return step_.state; }
+  State& steer() override {
+    if (static_cast<int>(stage_) >= static_cast<int>(Stage::solve))
+      throw RunError("a hook may change the state only before the solve stage (it ran " +
+                     std::string(when_ == When::before ? "before " : "after ") + std::string(stage_name(stage_)) + ")");
+    return step_.state;
+  }
+  void request_stop(const std::string& reason) override {
+    if (stop_.empty()) stop_ = reason.empty() ? "stop requested by a hook" : reason;
+  }
+
+ private:
+  StepContext& step_;
+  Stage stage_;
+  When when_;
+  std::string& stop_;
+};
+
+}  // namespace
+
+Scheduler::Scheduler(World& world) : w_(world) {
+  build_stages();
+  for (auto& h : w_.hooks)
+    for (auto [stage, when] : h->points()) hooks_[static_cast<int>(stage)][static_cast<int>(when)].push_back(h.get());
+}
+
+void Scheduler::build_stages() {
+  if (!w_.drivers.empty()) stages_[static_cast<int>(Stage::begin_step)] = [this](StepContext& c) { apply_drivers(c); };
+  if (!w_.forces.empty()) {
+    stages_[static_cast<int>(Stage::external_forces)] = [this](StepContext& c) {
+      for (const char* name : {"force", "torque"}) {
+        Field& f = c.state.field(name);
+        std::fill(f.data(), f.data() + f.bodies() * f.components(), 0.0);
+      }
+      for (auto& f : w_.forces) f->apply(c);
+    };
+  }
+  if (w_.model) stages_[static_cast<int>(Stage::bulk)] = [this](StepContext& c) { w_.model->bulk(c); };
+  stages_[static_cast<int>(Stage::free_velocity)] = [this](StepContext& c) { w_.integrator->free_velocity(c); };
+  stages_[static_cast<int>(Stage::update_dofs)] = [this](StepContext& c) { w_.integrator->update_dofs(c); };
+  stages_[static_cast<int>(Stage::end_step)] = [](StepContext& c) { c.state.swap_depths(); };
+}
+
+void Scheduler::apply_drivers(StepContext& ctx) {
+  // A driver imposes v⁺, the velocity at the end of the step, while start ≤ t⁺ ≤ end.
+  Field& f = ctx.state.field(imposed_velocity_field().name);
+  const double t_end = static_cast<double>(ctx.step + 1) * ctx.h;
+  const int n = f.components();
+  // Reset the driven bodies first: several drivers may share a body (different windows).
+  for (const auto& d : w_.drivers) std::fill_n(f.data() + d.body * n, n, std::nan(""));
+  for (const auto& d : w_.drivers) {
+    if (t_end < d.start || t_end > d.end) continue;
+    for (int k = 0; k < n; ++k)
+      if (!std::isnan(d.velocity[k])) f.data()[d.body * n + k] = d.velocity[k];
+  }
+}
+
+void Scheduler::check_finite(long step) const {
+  for (const auto& f : w_.state.fields()) {
+    if (f.spec().output != FieldOutput::frame) continue;
+    const double* p = f.data(Depth::begin);
+    const std::size_t n = f.bodies() * f.components();
+    for (std::size_t i = 0; i < n; ++i)
+      if (!std::isfinite(p[i]))
+        throw RunError("non-finite value in field '" + f.name() + "' of body '" + w_.state.names()[i / f.components()] +
+                       "' after step " + std::to_string(step));
+  }
+}
+
+RunSummary Scheduler::run(const RunOptions& opt) {
+  RunSummary sum;
+  sum.first_step = opt.first_step;
+  const long last = opt.steps ? opt.first_step + *opt.steps : w_.total_steps;
+  StepContext ctx{w_.state};
+  ctx.h = w_.h;
+  ctx.theta = w_.theta;
+  ctx.gravity = w_.gravity;
+  ctx.external_forces = !w_.forces.empty();
+  std::string stop;
+
+  auto write = [&](long step) {
+    if (!opt.sink) return;
+    check_finite(step);
+    const auto t0 = StageTimer::clock::now();
+    opt.sink->write_frame(step, static_cast<double>(step) * w_.h, w_.state, SolverInfo{});
+    sum.timer.add(Stage::output, StageTimer::clock::now() - t0);
+  };
+  auto run_hooks = [&](Stage s, When when) {
+    auto& list = hooks_[static_cast<int>(s)][static_cast<int>(when)];
+    if (list.empty()) return;
+    const auto t0 = StageTimer::clock::now();
+    Context hc(ctx, s, when, stop);
+    for (Hook* h : list) h->run(hc);
+    sum.timer.add_hooks(StageTimer::clock::now() - t0);
+  };
+
+  std::optional<Progress> progress;
+  if (opt.progress) progress.emplace(*opt.progress, opt.progress_terminal, opt.first_step, last);
+  if (opt.write_first_frame) write(opt.first_step);
+
+  long step = opt.first_step;
+  while (step < last && stop.empty()) {
+    bool written = false;
+    ctx.step = step;
+    ctx.time = static_cast<double>(step) * w_.h;  // never accumulated: restarts stay bit-identical
+    for (int i = 0; i < stage_count; ++i) {
+      const Stage s = static_cast<Stage>(i);
+      run_hooks(s, When::before);
+      if (s == Stage::output) {
+        const long done = step + 1;
+        const bool due = done % w_.output.every == 0 || done == last || !stop.empty();
+        if (due) {
+          write(done);
+          written = true;
+        }
+      } else if (stages_[i]) {
+        const auto t0 = StageTimer::clock::now();
+        stages_[i](ctx);
+        sum.timer.add(s, StageTimer::clock::now() - t0);
+      }
+      run_hooks(s, When::after);
+    }
+    ++step;
+    if (progress) progress->update(step, static_cast<double>(step) * w_.h);
+    // A stop asked after the output stage still gets its frame.
+    if (!stop.empty() && !written) write(step);
+  }
+  if (progress) progress->finish(step, static_cast<double>(step) * w_.h);
+  for (auto& h : w_.hooks) h->finish(w_.state);
+  if (opt.sink) opt.sink->close();
+  sum.last_step = step;
+  sum.stopped_by_hook = !stop.empty();
+  sum.stop_reason = stop;
+  return sum;
+}
+
+}  // namespace moreau::kernel

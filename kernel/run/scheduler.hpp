@@ -1,0 +1,51 @@
+#pragma once
+// The step scheduler: runs the stage sequence of DESIGN §1 for each step, with the
+// hooks before and after each stage. Stages with no work are not called at all (and
+// not timed), so a scene pays only for what it uses.
+#include <array>
+#include <functional>
+#include <iosfwd>
+#include <optional>
+#include <string>
+#include <vector>
+
+#include "frame_sink.hpp"
+#include "stage_timer.hpp"
+#include "world.hpp"
+
+namespace moreau::kernel {
+
+struct RunOptions {
+  long first_step = 0;               ///< completed steps at start (0, or the restart frame)
+  std::optional<long> steps;         ///< how many steps to run (default: to the scene's duration)
+  FrameSink* sink = nullptr;         ///< nullptr: no output
+  bool write_first_frame = true;     ///< false when continuing a file that has it already
+  std::ostream* progress = nullptr;  ///< nullptr: silent
+  bool progress_terminal = false;
+};
+
+struct RunSummary {
+  long first_step = 0;
+  long last_step = 0;  ///< completed steps at the end
+  bool stopped_by_hook = false;
+  std::string stop_reason;
+  StageTimer timer;
+};
+
+class Scheduler {
+ public:
+  explicit Scheduler(World& world);
+  RunSummary run(const RunOptions& options);
+
+ private:
+  using StageFn = std::function<void(StepContext&)>;
+  void build_stages();
+  void apply_drivers(StepContext& ctx);
+  void check_finite(long step) const;
+
+  World& w_;
+  std::array<StageFn, stage_count> stages_;
+  std::array<std::array<std::vector<Hook*>, 2>, stage_count> hooks_;
+};
+
+}  // namespace moreau::kernel

@@ -1,0 +1,56 @@
+#pragma once
+// Everything a run needs, built from a validated scene: the State, the plugin objects
+// (each keeping its library loaded), and the run settings.
+#include <limits>
+#include <memory>
+#include <moreau/force.hpp>
+#include <moreau/hook.hpp>
+#include <moreau/integrator.hpp>
+#include <moreau/modelization.hpp>
+#include <moreau/state.hpp>
+#include <nlohmann/json.hpp>
+#include <string>
+#include <vector>
+
+#include "../plugin/owned.hpp"
+#include "../plugin/registry.hpp"
+
+namespace moreau::kernel {
+
+/// An imposed-velocity driver (scene key `drivers`): chosen components of a body's
+/// velocity imposed from `start` to `end`. NaN components are left free.
+struct Driver {
+  int body = -1;
+  std::vector<double> velocity;  ///< d linear then 1 (2D) / 3 (3D) angular components, world frame
+  double start = 0;
+  double end = std::numeric_limits<double>::infinity();
+};
+
+struct OutputSettings {
+  std::string file;  ///< output HDF5 path ("" = no output)
+  long every = 1;    ///< a frame every `every` steps, plus the first and the last
+};
+
+struct World {
+  std::string scene_file;
+  std::string scene_text;   ///< verbatim, stored in the output
+  nlohmann::json scene;     ///< validated, defaults filled in
+  int dimension = 3;
+  double h = 0;
+  double theta = 0.5;
+  long total_steps = 0;
+  std::vector<double> gravity;
+  OutputSettings output;
+
+  std::unique_ptr<Registry> registry;  // before the plugin objects: outlives them
+  State state;
+  Owned<Modelization> model;
+  Owned<Integrator> integrator;
+  std::vector<Owned<Force>> forces;
+  std::vector<Owned<Hook>> hooks;
+  std::vector<Driver> drivers;
+
+  explicit World(int dim = 3) : state(dim) {}
+};
+
+}  // namespace moreau::kernel

@@ -1,0 +1,17 @@
+#pragma once
+// Scene → World: validates the whole scene first (every fault reported at once, with its
+// JSON pointer), loading only the plugins the scene names, then builds the objects.
+#include <memory>
+#include <string>
+
+#include "../run/world.hpp"
+
+namespace moreau::kernel {
+
+/// Validates and builds. Throws InputErrors (every fault) or InputError, with the file.
+std::unique_ptr<World> build_world(const std::string& scene_path);
+
+/// Validates only (what `moreau check` runs). Same errors as build_world.
+void check_scene(const std::string& scene_path);
+
+}  // namespace moreau::kernel

@@ -1,0 +1,89 @@
+#include "scene_schema.hpp"
+
+namespace moreau::kernel::scene_schema {
+
+Schema top() {
+  Schema s;
+  s.string("format", "scene format and version").one_of({kFormat});
+  s.integer("dimension", "2 or 3").min(2).max(3);
+  s.object("time", "time stepping: step, duration, theta, integrator");
+  s.vector("gravity", "gravity acceleration", length::dimension).units("m/s2").fallback(nullptr);
+  s.array("plugin_paths", "extra folders searched first for plugin libraries").fallback(nlohmann::json::array());
+  s.object("materials", "named materials: {name: {density}}").fallback(nlohmann::json::object());
+  s.object("laws", "named contact laws: {name: {type, ...}}").fallback(nlohmann::json::object());
+  s.array("bodies", "the bodies");
+  s.array("generators", "body generators (none are available yet: must be empty)").fallback(nlohmann::json::array());
+  s.array("drivers", "imposed velocities: [{body, velocity, angular_velocity, start, end}]").fallback(nlohmann::json::array());
+  s.array("forces", "external-force plugins: [{type, ...}]").fallback(nlohmann::json::array());
+  s.array("interactions", "which contactor groups interact, and by which law: [{groups, law}]").fallback(nlohmann::json::array());
+  s.object("detection", "contact detection: broadphase, alert").fallback(nlohmann::json::object());
+  s.object("solver", "contact solver: {type, ...}").fallback(nlohmann::json::object());
+  s.object("output", "output file and frequency").fallback(nlohmann::json::object());
+  s.array("hooks", "hook plugins run at stage boundaries: [{type, ...}]").fallback(nlohmann::json::array());
+  return s;
+}
+
+Schema time() {
+  Schema s;
+  s.number("step", "time step h").units("s").gt(0);
+  s.number("duration", "simulated time; the run makes round(duration/step) steps").units("s").min(0);
+  s.number("theta", "theta of the theta-scheme").min(0.5).max(1).fallback(0.5);
+  s.string("integrator", "integrator plugin").fallback("theta");
+  return s;
+}
+
+Schema output() {
+  Schema s;
+  s.string("file", "output HDF5 file (relative to the working folder; --out overrides)").fallback("out.h5");
+  s.integer("every", "write a frame every N steps (plus the first and the last)").min(1).fallback(1);
+  return s;
+}
+
+Schema material() {
+  Schema s;
+  s.number("density", "mass density (2D: per unit thickness)").units("kg/m3").gt(0);
+  return s;
+}
+
+Schema body_kernel_keys() {
+  Schema s;
+  s.string("name", "unique body name");
+  s.string("model", "modelization plugin").fallback("rigid");
+  s.array("contactors", "the body's contactors (shapes, in the body frame)").fallback(nlohmann::json::array());
+  return s;
+}
+
+Schema contactor_kernel_keys() {
+  Schema s;
+  s.string("shape", "shape plugin");
+  s.string("group", "contactor group, paired in `interactions`").fallback("default");
+  return s;
+}
+
+Schema driver() {
+  Schema s;
+  s.string("body", "name of the driven body");
+  s.vector("velocity", "imposed velocity components; null leaves one free", length::dimension)
+      .units("m/s").allow_null_items().optional();
+  s.vector("angular_velocity", "imposed angular velocity components (world frame); null leaves one free",
+           length::rotation).units("rad/s").allow_null_items().optional();
+  s.number("start", "time the driver starts").units("s").min(0).fallback(0.0);
+  s.number("end", "time the driver ends (absent: never)").units("s").min(0).optional();
+  return s;
+}
+
+Schema interaction() {
+  Schema s;
+  s.array("groups", "the two contactor groups");
+  s.string("law", "name of a law in `laws`");
+  return s;
+}
+
+Schema detection() {
+  Schema s;
+  s.string("broadphase", "broad-phase plugin").fallback("grid");
+  s.number("alert", "alert distance: contacts are created below this gap").units("m").min(0).fallback(0.0);
+  return s;
+}
+
+}  // namespace moreau::kernel::scene_schema

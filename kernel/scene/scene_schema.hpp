@@ -1,0 +1,21 @@
+#pragma once
+// The kernel's own sections of a scene (moreau-scene/1, DESIGN §3.2 and docs/scene.md).
+// Plugin sections (`type` objects, bodies' model keys, contactors' shape keys) are
+// checked against the schemas their plugins declare.
+#include <moreau/schema.hpp>
+
+namespace moreau::kernel::scene_schema {
+
+inline constexpr const char* kFormat = "moreau-scene/1";
+
+Schema top();
+Schema time();
+Schema output();
+Schema material();
+Schema body_kernel_keys();       ///< name, model, contactors
+Schema contactor_kernel_keys();  ///< shape, group
+Schema driver();
+Schema interaction();
+Schema detection();
+
+}  // namespace moreau::kernel::scene_schema

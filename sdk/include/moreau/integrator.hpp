@@ -1,0 +1,23 @@
+#pragma once
+// A time integrator: from the ⁻ state and the step's forces, the free velocity (stage
+// free_velocity), and, once the contact impulses are known, the ⁺ velocities and
+// positions (stage update_dofs). Works on the fields of the modelization it serves.
+#include <moreau/plugin.hpp>
+#include <moreau/step.hpp>
+
+namespace moreau {
+
+class MOREAU_API Integrator : public Plugin {
+ public:
+  static constexpr Kind kind = Kind::integrator;
+
+  /// Called once after all bodies are built (e.g. to check the fields it needs exist).
+  virtual void prepare(State& state) = 0;
+  /// Stage free_velocity: velocities at the end of the step without contact impulses.
+  virtual void free_velocity(StepContext& ctx) = 0;
+  /// Stage update_dofs: ⁺ velocities (free velocity plus M⁻¹ times the contact impulses
+  /// already stored in the state) and ⁺ positions and orientations.
+  virtual void update_dofs(StepContext& ctx) = 0;
+};
+
+}  // namespace moreau

@@ -1,0 +1,3 @@
+// Valid manifest, registers nothing.
+#include <moreau/plugin.hpp>
+MOREAU_PLUGIN_LIBRARY("moreau_force_empty")
