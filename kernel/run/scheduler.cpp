@@ -58,7 +58,7 @@ void Scheduler::build_stages() {
       for (auto& f : w_.forces) f->apply(c);
     };
   }
-  if (w_.model) stages_[static_cast<int>(Stage::bulk)] = [this](StepContext& c) { w_.model->bulk(c); };
+  if (w_.model && w_.model->has_bulk()) stages_[static_cast<int>(Stage::bulk)] = [this](StepContext& c) { w_.model->bulk(c); };
   stages_[static_cast<int>(Stage::free_velocity)] = [this](StepContext& c) { w_.integrator->free_velocity(c); };
   stages_[static_cast<int>(Stage::update_dofs)] = [this](StepContext& c) { w_.integrator->update_dofs(c); };
   stages_[static_cast<int>(Stage::end_step)] = [](StepContext& c) { c.state.swap_depths(); };

@@ -18,6 +18,13 @@ class MOREAU_API Integrator : public Plugin {
   /// Stage update_dofs: ⁺ velocities (free velocity plus M⁻¹ times the contact impulses
   /// already stored in the state) and ⁺ positions and orientations.
   virtual void update_dofs(StepContext& ctx) = 0;
+
+  /// For contacts: the generalised inverse mass of `body` that update_dofs applies to
+  /// contact impulses, world frame, k×k row-major (k = 3 in 2D: vx vy ω; k = 6 in 3D:
+  /// v then ω), zero for fixed bodies and imposed components; and the body's centre of
+  /// mass (3 values, world). Valid after free_velocity of the current step.
+  virtual void contact_inverse_mass(const State& state, std::size_t body, double* inverse_mass,
+                                    double* center) const = 0;
 };
 
 }  // namespace moreau

@@ -33,8 +33,11 @@ class MOREAU_API Modelization : public Plugin {
   virtual void init_body(State& state, std::size_t body, const Params& params,
                          const std::optional<MassProperties>& contactors,
                          std::optional<double> density) = 0;
-  /// Stage `bulk`: bulk forces of the step (gravity, gyroscopic terms…).
+  /// Stage `bulk`: bulk forces of the step (internal forces of deformable bodies…).
   virtual void bulk(StepContext& ctx) = 0;
+  /// False when bulk() has nothing to do (rigid bodies: gravity and gyroscopic terms are
+  /// the integrator's), so the stage is skipped.
+  virtual bool has_bulk() const { return true; }
 };
 
 }  // namespace moreau

@@ -1,0 +1,275 @@
+// `theta`: the θ-method of Moreau–Jean for rigid bodies (DESIGN §1).
+//
+//   v_free = v⁻ + h M⁻¹ F̄            (F̄: gravity and external forces at the θ-point)
+//   v⁺     = v_free + M⁻¹ p          (p: contact impulse of the step, if any)
+//   x⁺     = x⁻ + h [(1−θ) v⁻ + θ v⁺]
+//
+// Rotations (3D) are integrated on SO(3): with Ω the body-frame angular velocity,
+// I(Ω⁺ − Ω⁻) = h[−Ω×IΩ + Rᵀτ]_θ is solved linearly implicitly (one Newton step from Ω⁻,
+// which keeps the θ = 0.5 scheme second order), and q⁺ = q⁻ ⊗ exp(h Ω_θ / 2) with
+// Ω_θ = (1−θ)Ω⁻ + θΩ⁺, so quaternions stay unit. Bodies with isotropic inertia skip the
+// gyroscopic solve (Ω×IΩ = 0). Contact impulses act with the world inverse inertia at
+// the start of the step, R⁻ I⁻¹ R⁻ᵀ, which is what contact_inverse_mass() reports.
+#include <cmath>
+#include <moreau/imposed_velocity.hpp>
+#include <moreau/integrator.hpp>
+#include <moreau/rigid_fields.hpp>
+
+#include "rotation.hpp"
+
+namespace {
+
+using namespace moreau;
+namespace R = moreau::rigid;
+using namespace moreau::theta;
+
+/// Raw pointers to the fields of one step (the hot loops index them directly).
+struct Fields {
+  double *x0, *x1, *v0, *v1, *w0, *w1, *q0, *q1;  // begin / end depths (q: angle in 2D)
+  double *vf, *wf, *im, *ii, *I, *F, *T, *P, *L, *imp;
+};
+
+class Theta : public Integrator {
+ public:
+  static Schema schema() { return {}; }
+  static constexpr const char* doc = "theta-method (Moreau-Jean) for rigid bodies; theta from time.theta";
+  Theta(const Params&, const BuildContext&) {}
+
+  void prepare(State& st) override {
+    for (const char* f : {R::position, R::velocity, R::angular_velocity, R::inverse_mass, R::inverse_inertia})
+      if (!st.has(f)) throw InputError("/time/integrator", std::string("the theta integrator needs the rigid field '") + f + "'");
+  }
+
+  void free_velocity(StepContext& c) override {
+    Fields f = fields(c.state, c.external_forces, false);
+    if (c.state.dimension() == 2) free_2d(c, f);
+    else free_3d(c, f);
+  }
+
+  void update_dofs(StepContext& c) override {
+    Fields f = fields(c.state, c.external_forces, c.contact_impulses);
+    if (c.state.dimension() == 2) update_2d(c, f);
+    else update_3d(c, f);
+  }
+
+  void contact_inverse_mass(const State& st, std::size_t b, double* M, double* center) const override {
+    const int d = st.dimension();
+    const int k = d == 2 ? 3 : 6;
+    for (int i = 0; i < k * k; ++i) M[i] = 0;
+    const double* x = st.field(R::position).row(b, Depth::begin).data();
+    center[0] = x[0];
+    center[1] = x[1];
+    center[2] = d == 3 ? x[2] : 0.0;
+    const double im = st.field(R::inverse_mass).row(b)[0];
+    if (im == 0) return;  // fixed
+    const double* ii = st.field(R::inverse_inertia).row(b).data();
+    for (int i = 0; i < d; ++i) M[i * k + i] = im;
+    if (d == 2) {
+      M[8] = ii[0];
+    } else {
+      double Rm[9], A[9], Iw[9];
+      quat_to_matrix(st.field(R::orientation).row(b, Depth::begin).data(), Rm);
+      // Iw = R I⁻¹ Rᵀ
+      const double S[9] = {ii[0], ii[3], ii[4], ii[3], ii[1], ii[5], ii[4], ii[5], ii[2]};
+      for (int i = 0; i < 3; ++i)
+        for (int j = 0; j < 3; ++j) A[i * 3 + j] = Rm[i * 3 + 0] * S[0 * 3 + j] + Rm[i * 3 + 1] * S[3 + j] + Rm[i * 3 + 2] * S[6 + j];
+      for (int i = 0; i < 3; ++i)
+        for (int j = 0; j < 3; ++j) Iw[i * 3 + j] = A[i * 3 + 0] * Rm[j * 3 + 0] + A[i * 3 + 1] * Rm[j * 3 + 1] + A[i * 3 + 2] * Rm[j * 3 + 2];
+      for (int i = 0; i < 3; ++i)
+        for (int j = 0; j < 3; ++j) M[(3 + i) * k + 3 + j] = Iw[i * 3 + j];
+    }
+    // An imposed component has infinite mass: no impulse changes it.
+    if (st.has(imposed_velocity_field().name)) {
+      const double* imp = st.field(imposed_velocity_field().name).row(b).data();
+      for (int i = 0; i < k; ++i)
+        if (!std::isnan(imp[i]))
+          for (int j = 0; j < k; ++j) M[i * k + j] = M[j * k + i] = 0;
+    }
+  }
+
+ private:
+  static double* ptr(State& st, const char* name, Depth d = Depth::end) {
+    return st.has(name) ? st.field(name).data(d) : nullptr;
+  }
+
+  static Fields fields(State& st, bool forces, bool impulses) {
+    Fields f{};
+    const bool two = st.dimension() == 2;
+    f.x0 = ptr(st, R::position, Depth::begin);
+    f.x1 = ptr(st, R::position, Depth::end);
+    f.v0 = ptr(st, R::velocity, Depth::begin);
+    f.v1 = ptr(st, R::velocity, Depth::end);
+    f.w0 = ptr(st, R::angular_velocity, Depth::begin);
+    f.w1 = ptr(st, R::angular_velocity, Depth::end);
+    f.q0 = ptr(st, two ? R::angle : R::orientation, Depth::begin);
+    f.q1 = ptr(st, two ? R::angle : R::orientation, Depth::end);
+    f.vf = ptr(st, R::free_velocity);
+    f.wf = ptr(st, R::free_angular_velocity);
+    f.im = ptr(st, R::inverse_mass);
+    f.ii = ptr(st, R::inverse_inertia);
+    f.I = ptr(st, R::inertia);
+    if (forces) {
+      f.F = ptr(st, R::force);
+      f.T = ptr(st, R::torque);
+    }
+    f.P = impulses ? ptr(st, R::impulse) : nullptr;
+    f.L = f.P ? ptr(st, R::angular_impulse) : nullptr;
+    f.imp = ptr(st, imposed_velocity_field().name.c_str());
+    return f;
+  }
+
+  static void free_2d(const StepContext& c, const Fields& f) {
+    const std::size_t n = c.state.bodies();
+    const double h = c.h, gx = c.gravity[0], gy = c.gravity[1];
+    for (std::size_t i = 0; i < n; ++i) {
+      const double im = f.im[i];
+      if (im == 0) {  // fixed
+        f.vf[2 * i] = f.vf[2 * i + 1] = f.wf[i] = 0;
+      } else {
+        double ax = gx, ay = gy, alpha = 0;
+        if (f.F) {
+          ax += im * f.F[2 * i];
+          ay += im * f.F[2 * i + 1];
+          alpha = f.ii[i] * f.T[i];
+        }
+        f.vf[2 * i] = f.v0[2 * i] + h * ax;
+        f.vf[2 * i + 1] = f.v0[2 * i + 1] + h * ay;
+        f.wf[i] = f.w0[i] + h * alpha;
+      }
+      if (f.imp) impose(f.imp + 3 * i, f.vf + 2 * i, 2, f.wf + i, 1);
+    }
+  }
+
+  static void update_2d(const StepContext& c, const Fields& f) {
+    const std::size_t n = c.state.bodies();
+    const double h = c.h, a = h * (1 - c.theta), b = h * c.theta;
+    for (std::size_t i = 0; i < n; ++i) {
+      double vx = f.vf[2 * i], vy = f.vf[2 * i + 1], w = f.wf[i];
+      if (f.P && f.im[i] != 0) {
+        vx += f.im[i] * f.P[2 * i];
+        vy += f.im[i] * f.P[2 * i + 1];
+        w += f.ii[i] * f.L[i];
+      }
+      if (f.imp) {
+        double v[2] = {vx, vy};
+        impose(f.imp + 3 * i, v, 2, &w, 1);
+        vx = v[0];
+        vy = v[1];
+      }
+      f.v1[2 * i] = vx;
+      f.v1[2 * i + 1] = vy;
+      f.w1[i] = w;
+      f.x1[2 * i] = f.x0[2 * i] + a * f.v0[2 * i] + b * vx;
+      f.x1[2 * i + 1] = f.x0[2 * i + 1] + a * f.v0[2 * i + 1] + b * vy;
+      f.q1[i] = f.q0[i] + a * f.w0[i] + b * w;
+    }
+  }
+
+  static void free_3d(const StepContext& c, const Fields& f) {
+    const std::size_t n = c.state.bodies();
+    const double h = c.h, ht = c.h * c.theta;
+    const double g[3] = {c.gravity[0], c.gravity[1], c.gravity[2]};
+    for (std::size_t i = 0; i < n; ++i) {
+      double* vf = f.vf + 3 * i;
+      double* wf = f.wf + 3 * i;
+      const double im = f.im[i];
+      if (im == 0) {
+        vf[0] = vf[1] = vf[2] = wf[0] = wf[1] = wf[2] = 0;
+        if (f.imp) impose(f.imp + 6 * i, vf, 3, wf, 3);
+        continue;
+      }
+      const double* v = f.v0 + 3 * i;
+      for (int k = 0; k < 3; ++k) vf[k] = v[k] + h * (g[k] + (f.F ? im * f.F[3 * i + k] : 0.0));
+
+      const double* I = f.I + 6 * i;
+      const double* ii = f.ii + 6 * i;
+      const double* w = f.w0 + 3 * i;
+      const bool isotropic = I[0] == I[1] && I[1] == I[2] && I[3] == 0 && I[4] == 0 && I[5] == 0;
+      if (isotropic) {
+        // No gyroscopic term: ω_free = ω + h I⁻¹ τ in any frame.
+        for (int k = 0; k < 3; ++k) wf[k] = w[k] + (f.T ? h * ii[0] * f.T[3 * i + k] : 0.0);
+      } else {
+        double Rm[9], W[3], IW[3], WxIW[3], rhs[3], dW[3];
+        quat_to_matrix(f.q0 + 4 * i, Rm);
+        mul_transpose(Rm, w, W);  // body frame
+        sym_mul(I, W, IW);
+        cross(W, IW, WxIW);
+        double Tb[3] = {0, 0, 0};
+        if (f.T) mul_transpose(Rm, f.T + 3 * i, Tb);
+        for (int k = 0; k < 3; ++k) rhs[k] = h * (Tb[k] - WxIW[k]);
+        // A = I + hθ J, J = ∂(Ω×IΩ)/∂Ω = [Ω]× I − [IΩ]×
+        const double Im[9] = {I[0], I[3], I[4], I[3], I[1], I[5], I[4], I[5], I[2]};
+        const double Wx[9] = {0, -W[2], W[1], W[2], 0, -W[0], -W[1], W[0], 0};
+        const double Lx[9] = {0, -IW[2], IW[1], IW[2], 0, -IW[0], -IW[1], IW[0], 0};
+        double A[9];
+        for (int r = 0; r < 3; ++r)
+          for (int s = 0; s < 3; ++s) {
+            double j = Wx[r * 3] * Im[s] + Wx[r * 3 + 1] * Im[3 + s] + Wx[r * 3 + 2] * Im[6 + s] - Lx[r * 3 + s];
+            A[r * 3 + s] = Im[r * 3 + s] + ht * j;
+          }
+        solve3(A, rhs, dW);
+        for (int k = 0; k < 3; ++k) W[k] += dW[k];
+        mul(Rm, W, wf);  // world axes at the start of the step
+      }
+      if (f.imp) impose(f.imp + 6 * i, vf, 3, wf, 3);
+    }
+  }
+
+  static void update_3d(const StepContext& c, const Fields& f) {
+    const std::size_t n = c.state.bodies();
+    const double h = c.h, a = h * (1 - c.theta), b = h * c.theta, th = c.theta;
+    for (std::size_t i = 0; i < n; ++i) {
+      double v[3] = {f.vf[3 * i], f.vf[3 * i + 1], f.vf[3 * i + 2]};
+      double w[3] = {f.wf[3 * i], f.wf[3 * i + 1], f.wf[3 * i + 2]};
+      const double* q0 = f.q0 + 4 * i;
+      double* q1 = f.q1 + 4 * i;
+      const bool fixed = f.im[i] == 0;
+      double Rm[9];
+      quat_to_matrix(q0, Rm);
+      if (f.P && !fixed) {
+        const double* ii = f.ii + 6 * i;
+        double Lb[3], dW[3], dw[3];
+        for (int k = 0; k < 3; ++k) v[k] += f.im[i] * f.P[3 * i + k];
+        mul_transpose(Rm, f.L + 3 * i, Lb);
+        sym_mul(ii, Lb, dW);
+        mul(Rm, dW, dw);
+        for (int k = 0; k < 3; ++k) w[k] += dw[k];
+      }
+      if (f.imp) impose(f.imp + 6 * i, v, 3, w, 3);
+      const double* x0 = f.x0 + 3 * i;
+      const double* v0 = f.v0 + 3 * i;
+      for (int k = 0; k < 3; ++k) {
+        f.v1[3 * i + k] = v[k];
+        f.x1[3 * i + k] = x0[k] + a * v0[k] + b * v[k];
+      }
+      if (fixed) {
+        for (int k = 0; k < 4; ++k) q1[k] = q0[k];
+        for (int k = 0; k < 3; ++k) f.w1[3 * i + k] = w[k];
+        continue;
+      }
+      // Body-frame rates at both ends (Ω⁺ from ω̃⁺ = R⁻ Ω⁺), rotation by h Ω_θ.
+      double W0[3], W1[3], phi[3], R1[9];
+      mul_transpose(Rm, f.w0 + 3 * i, W0);
+      mul_transpose(Rm, w, W1);
+      for (int k = 0; k < 3; ++k) phi[k] = h * ((1 - th) * W0[k] + th * W1[k]);
+      rotate_body(q0, phi, q1);
+      quat_to_matrix(q1, R1);
+      mul(R1, W1, f.w1 + 3 * i);
+      if (f.imp) impose(f.imp + 6 * i, f.v1 + 3 * i, 3, f.w1 + 3 * i, 3);  // imposed in world axes at t⁺
+    }
+  }
+
+  /// Overwrites the imposed (non-NaN) components: linear then angular.
+  static void impose(const double* imp, double* v, int nv, double* w, int nw) {
+    for (int k = 0; k < nv; ++k)
+      if (!std::isnan(imp[k])) v[k] = imp[k];
+    for (int k = 0; k < nw; ++k)
+      if (!std::isnan(imp[nv + k])) w[k] = imp[nv + k];
+  }
+};
+
+MOREAU_REGISTER(Theta, "theta")
+
+}  // namespace
+
+MOREAU_PLUGIN_LIBRARY("moreau_integrator_theta")

@@ -1,0 +1,144 @@
+// `rigid`: rigid bodies in 2D and 3D. Declares the rigid field table and fills each
+// body's rows from the scene: pose, velocities, mass and inertia (explicit, or from the
+// contactors' geometry and the material density). Gravity and the gyroscopic term are
+// the integrator's, so the bulk stage has nothing to do.
+#include <cmath>
+#include <moreau/modelization.hpp>
+#include <moreau/rigid_fields.hpp>
+
+namespace {
+
+using namespace moreau;
+namespace R = moreau::rigid;
+
+class Rigid : public Modelization {
+ public:
+  static Schema schema() { return {}; }
+  static constexpr const char* doc = "rigid bodies (Newton-Euler), 2D and 3D";
+  Rigid(const Params&, const BuildContext&) {}
+
+  std::vector<FieldSpec> fields(int) const override { return R::fields(); }
+
+  Schema body_schema(int dim) const override {
+    Schema s;
+    s.boolean("fixed", "the body never moves").fallback(false);
+    s.vector("position", "position of the body origin", length::dimension).units("m");
+    if (dim == 2) {
+      s.number("angle", "rotation angle").units("rad").fallback(0.0);
+      s.number("angular_velocity", "angular velocity").units("rad/s").fallback(0.0);
+      s.number("inertia", "polar moment of inertia about the origin (per unit thickness)").units("kg m2").gt(0).optional();
+    } else {
+      s.vector("orientation", "unit quaternion w x y z", length::orientation).fallback({1.0, 0.0, 0.0, 0.0});
+      s.vector("angular_velocity", "angular velocity, world frame", length::rotation).units("rad/s")
+          .fallback({0.0, 0.0, 0.0});
+      s.vector("inertia", "inertia about the origin, body frame: 3 principal moments, or xx yy zz xy xz yz",
+               length::any).units("kg m2").optional();
+    }
+    s.vector("velocity", "velocity of the body origin", length::dimension).units("m/s").optional();
+    s.string("material", "material name (its density gives mass and inertia from the contactors)").optional();
+    s.number("mass", "mass (2D: per unit thickness); overrides the material").units("kg").gt(0).optional();
+    return s;
+  }
+
+  void init_body(State& st, std::size_t b, const Params& p, const std::optional<MassProperties>& shapes,
+                 std::optional<double> density) override {
+    const int d = st.dimension();
+    const bool fixed = p.boolean("fixed");
+    st.field(R::fixed).row(b)[0] = fixed ? 1.0 : 0.0;
+    set_both(st.field(R::position), b, p.vector("position"));
+    const std::vector<double> v = p.has("velocity") ? p.vector("velocity") : std::vector<double>(d, 0.0);
+    set_both(st.field(R::velocity), b, fixed ? std::vector<double>(d, 0.0) : v);
+    if (d == 2) {
+      set_both(st.field(R::angle), b, {p.number("angle")});
+      set_both(st.field(R::angular_velocity), b, {fixed ? 0.0 : p.number("angular_velocity")});
+    } else {
+      std::vector<double> q = p.vector("orientation");
+      const double n = std::sqrt(q[0] * q[0] + q[1] * q[1] + q[2] * q[2] + q[3] * q[3]);
+      if (std::fabs(n - 1) > 1e-6)
+        throw p.error("orientation", "expected a unit quaternion [w, x, y, z], its norm is " + std::to_string(n));
+      for (double& x : q) x /= n;
+      set_both(st.field(R::orientation), b, q);
+      set_both(st.field(R::angular_velocity), b, fixed ? std::vector<double>(3, 0.0) : p.vector("angular_velocity"));
+    }
+
+    if (shapes && (std::fabs(shapes->center[0]) > 1e-12 || std::fabs(shapes->center[1]) > 1e-12 ||
+                   std::fabs(shapes->center[2]) > 1e-12))
+      throw p.error("contactors", "the contactors' centre of mass is not at the body origin; place the body origin "
+                                  "at the centre of mass (offset centres of mass are not supported yet)");
+
+    // Mass: explicit, or density × volume of the contactors.
+    double mass = 0;
+    if (p.has("mass")) mass = p.number("mass");
+    else if (shapes && density) mass = *density * shapes->volume;
+    if (!fixed && !(mass > 0))
+      throw p.error("", "a body that is not fixed needs a mass: give \"mass\" and \"inertia\", or contactors and a "
+                        "\"material\" with a density");
+    st.field(R::mass).row(b)[0] = mass;
+    st.field(R::inverse_mass).row(b)[0] = fixed ? 0.0 : 1.0 / mass;
+
+    // Inertia: explicit, or the contactors' unit-density inertia scaled to the mass.
+    std::vector<double> I(d == 2 ? 1 : 6, 0.0);
+    if (p.has("inertia")) {
+      if (d == 2) I[0] = p.number("inertia");
+      else {
+        auto in = p.vector("inertia");
+        if (in.size() == 3) I = {in[0], in[1], in[2], 0, 0, 0};
+        else if (in.size() == 6) I = in;
+        else throw p.error("inertia", "expected 3 principal moments or 6 components (xx yy zz xy xz yz), got " +
+                                          std::to_string(in.size()) + " numbers");
+      }
+    } else if (shapes && shapes->volume > 0) {
+      const double scale = mass / shapes->volume;  // = density when the mass came from it
+      const auto& J = shapes->inertia;
+      if (d == 2) I[0] = scale * J[8];
+      else I = {scale * J[0], scale * J[4], scale * J[8], scale * J[1], scale * J[2], scale * J[5]};
+    } else if (!fixed) {
+      throw p.error("", "a body with an explicit mass and no contactors needs \"inertia\"");
+    }
+    st.field(R::inertia).row(b).data()[0] = I[0];
+    for (std::size_t k = 0; k < I.size(); ++k) st.field(R::inertia).row(b)[k] = I[k];
+    auto inv = st.field(R::inverse_inertia).row(b);
+    if (fixed) {
+      for (double& x : inv) x = 0;
+    } else if (d == 2) {
+      if (!(I[0] > 0)) throw p.error("inertia", "the moment of inertia must be positive");
+      inv[0] = 1 / I[0];
+    } else {
+      invert_symmetric(I, inv, p);
+    }
+  }
+
+  void bulk(StepContext&) override {}
+  bool has_bulk() const override { return false; }
+
+ private:
+  static void set_both(Field& f, std::size_t b, const std::vector<double>& v) {
+    for (Depth dp : {Depth::begin, Depth::end}) {
+      auto row = f.row(b, dp);
+      for (std::size_t k = 0; k < row.size(); ++k) row[k] = v[k];
+    }
+  }
+
+  /// Inverse of the symmetric tensor (xx yy zz xy xz yz); it must be positive definite.
+  static void invert_symmetric(const std::vector<double>& I, std::span<double> out, const Params& p) {
+    const double a = I[0], e = I[1], i = I[2], b = I[3], c = I[4], f = I[5];
+    // Cofactors of [[a b c][b e f][c f i]].
+    const double A = e * i - f * f, B = c * f - b * i, C = b * f - c * e;
+    const double E = a * i - c * c, F = b * c - a * f, Ii = a * e - b * b;
+    const double det = a * A + b * B + c * C;
+    if (!(a > 0) || !(Ii > 0) || !(det > 0))
+      throw p.error("inertia", "the inertia tensor must be positive definite");
+    out[0] = A / det;
+    out[1] = E / det;
+    out[2] = Ii / det;
+    out[3] = B / det;
+    out[4] = C / det;
+    out[5] = F / det;
+  }
+};
+
+MOREAU_REGISTER(Rigid, "rigid")
+
+}  // namespace
+
+MOREAU_PLUGIN_LIBRARY("moreau_modelization_rigid")

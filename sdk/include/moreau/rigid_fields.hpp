@@ -1,0 +1,71 @@
+#pragma once
+// The rigid-body state: the one table of fields (name, components in 2D and 3D, time
+// depths, units, output, restart, doc) that drives the State's allocation, the HDF5
+// output, restarts and the docs (`moreau plugins` prints it). Used by the `rigid`
+// modelization, the `theta` integrator, the contact stages and hooks.
+//
+// Conventions: world frame unless said otherwise; `position` and `velocity` are those of
+// the body-frame origin given in the scene, which is also the centre of mass (contactor
+// clusters whose centre of mass is elsewhere are refused for now); `angular_velocity`
+// is in the world frame; inertia is in the body frame.
+#include <moreau/state.hpp>
+#include <vector>
+
+namespace moreau::rigid {
+
+inline constexpr const char* position = "position";
+inline constexpr const char* angle = "angle";
+inline constexpr const char* orientation = "orientation";
+inline constexpr const char* velocity = "velocity";
+inline constexpr const char* angular_velocity = "angular_velocity";
+inline constexpr const char* mass = "mass";
+inline constexpr const char* inverse_mass = "inverse_mass";
+inline constexpr const char* inertia = "inertia";
+inline constexpr const char* inverse_inertia = "inverse_inertia";
+inline constexpr const char* fixed = "fixed";
+inline constexpr const char* free_velocity = "free_velocity";
+inline constexpr const char* free_angular_velocity = "free_angular_velocity";
+inline constexpr const char* force = "force";
+inline constexpr const char* torque = "torque";
+inline constexpr const char* impulse = "impulse";
+inline constexpr const char* angular_impulse = "angular_impulse";
+
+inline std::vector<FieldSpec> fields() {
+  using O = FieldOutput;
+  auto f = [](const char* name, int c2, int c3, int depths, const char* units, O out, bool restart, const char* doc,
+              bool int8 = false) {
+    FieldSpec s;
+    s.name = name;
+    s.components_2d = c2;
+    s.components_3d = c3;
+    s.depths = depths;
+    s.units = units;
+    s.output = out;
+    s.restart = restart;
+    s.doc = doc;
+    s.as_int8 = int8;
+    return s;
+  };
+  return {
+      f(position, 2, 3, 2, "m", O::frame, true, "position of the body origin (= centre of mass)"),
+      f(angle, 1, 0, 2, "rad", O::frame, true, "2D rotation angle, counter-clockwise"),
+      f(orientation, 0, 4, 2, "1", O::frame, true, "3D orientation, unit quaternion w x y z (body to world)"),
+      f(velocity, 2, 3, 2, "m/s", O::frame, true, "velocity of the body origin"),
+      f(angular_velocity, 1, 3, 2, "rad/s", O::frame, true, "angular velocity, world frame"),
+      f(mass, 1, 1, 1, "kg", O::bodies, false, "mass (2D: per unit thickness)"),
+      f(fixed, 1, 1, 1, "1", O::bodies, false, "1 for bodies that never move", true),
+      f(inertia, 1, 6, 1, "kg m2", O::bodies, false,
+        "inertia about the centre of mass, body frame (3D: xx yy zz xy xz yz; 2D: polar)"),
+      f(inverse_mass, 1, 1, 1, "1/kg", O::none, false, "1/mass, 0 for fixed bodies"),
+      f(inverse_inertia, 1, 6, 1, "1/(kg m2)", O::none, false, "inverse inertia, body frame, 0 for fixed bodies"),
+      f(free_velocity, 2, 3, 1, "m/s", O::none, false, "velocity at the end of the step without contact impulses"),
+      f(free_angular_velocity, 1, 3, 1, "rad/s", O::none, false,
+        "angular velocity at the end of the step without contact impulses, world axes at the start of the step"),
+      f(force, 2, 3, 1, "N", O::none, false, "external force of the step (only with force plugins)"),
+      f(torque, 1, 3, 1, "N m", O::none, false, "external torque about the centre of mass (only with force plugins)"),
+      f(impulse, 2, 3, 1, "N s", O::none, false, "contact impulse of the step, world frame"),
+      f(angular_impulse, 1, 3, 1, "N m s", O::none, false, "contact angular impulse about the centre of mass, world"),
+  };
+}
+
+}  // namespace moreau::rigid
