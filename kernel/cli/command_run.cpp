@@ -18,10 +18,13 @@ int command_run(const RunArgs& args, std::ostream& out, std::ostream& err) {
     std::optional<long> continue_after;
     if (args.restart) {
       opt.first_step = load_restart(*world, *args.restart, args.restart_frame);
-      continue_after = opt.first_step;
       // Continuing in the same file: its frame of the restart step is there already.
+      // Into another file: a new file that starts with the restart frame.
       std::error_code ec;
-      opt.write_first_frame = !std::filesystem::equivalent(*args.restart, path, ec);
+      if (std::filesystem::equivalent(*args.restart, path, ec)) {
+        continue_after = opt.first_step;
+        opt.write_first_frame = false;
+      }
     }
     if (args.steps) opt.steps = *args.steps;
     std::unique_ptr<FrameSink> sink = open_output(*world, path, continue_after);

@@ -2,12 +2,36 @@
 
 #include <moreau/error.hpp>
 
+#include "../io/output_writer.hpp"
+#include "../io/restart.hpp"
+
 namespace moreau::kernel {
 
-std::unique_ptr<FrameSink> open_output(const World&, const std::string&, std::optional<long>) {
-  throw RunError("output: not wired yet");
+namespace {
+
+class Hdf5Sink : public FrameSink {
+ public:
+  explicit Hdf5Sink(std::unique_ptr<io::OutputWriter> w) : w_(std::move(w)) {}
+  void write_frame(long step, double time, const State& state, const SolverInfo& solver) override {
+    w_->write_frame(step, time, state, solver.iterations, solver.error, nullptr);
+  }
+  void close() override { w_->close(); }
+
+ private:
+  std::unique_ptr<io::OutputWriter> w_;
+};
+
+}  // namespace
+
+std::unique_ptr<FrameSink> open_output(const World& world, const std::string& path, std::optional<long> continue_after) {
+  io::OutputHeader header{world.dimension, world.h, world.scene_text};
+  if (continue_after)
+    return std::make_unique<Hdf5Sink>(io::OutputWriter::append(path, header, world.state, *continue_after));
+  return std::make_unique<Hdf5Sink>(io::OutputWriter::create(path, header, world.state));
 }
 
-long load_restart(World&, const std::string&, std::optional<long>) { throw RunError("restart: not wired yet"); }
+long load_restart(World& world, const std::string& file, std::optional<long> frame) {
+  return io::read_restart(file, frame, world.state).step;
+}
 
 }  // namespace moreau::kernel

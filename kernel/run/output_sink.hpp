@@ -10,9 +10,9 @@
 
 namespace moreau::kernel {
 
-/// Opens the output file for a new run, or, with `continue_after`, for a run restarted
-/// from that step (frames after it are dropped when the file already holds the run).
-/// An unwritable path is an InputError; nothing is created then.
+/// Creates the output file of a run, or, with `continue_after`, reopens the run's own
+/// file to continue it after that step (its later frames are dropped). An unwritable
+/// path is an InputError; nothing is created then.
 std::unique_ptr<FrameSink> open_output(const World& world, const std::string& path,
                                        std::optional<long> continue_after = std::nullopt);
 

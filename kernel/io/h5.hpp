@@ -1,0 +1,64 @@
+#pragma once
+// Thin RAII over the HDF5 C API, for kernel/io only (HDF5 stays out of public headers).
+#include <hdf5.h>
+
+#include <string>
+#include <utility>
+#include <vector>
+
+namespace moreau::io::h5 {
+
+class Id {
+ public:
+  Id() = default;
+  Id(hid_t id, herr_t (*close)(hid_t)) : id_(id), close_(close) {}
+  Id(Id&& o) noexcept : id_(std::exchange(o.id_, -1)), close_(o.close_) {}
+  Id& operator=(Id&& o) noexcept {
+    reset();
+    id_ = std::exchange(o.id_, -1);
+    close_ = o.close_;
+    return *this;
+  }
+  ~Id() { reset(); }
+  void reset() {
+    if (id_ >= 0 && close_) close_(id_);
+    id_ = -1;
+  }
+  hid_t get() const { return id_; }
+  explicit operator bool() const { return id_ >= 0; }
+
+ private:
+  hid_t id_ = -1;
+  herr_t (*close_)(hid_t) = nullptr;
+};
+
+inline Id file(hid_t id) { return {id, H5Fclose}; }
+inline Id group(hid_t id) { return {id, H5Gclose}; }
+inline Id dataset(hid_t id) { return {id, H5Dclose}; }
+inline Id space(hid_t id) { return {id, H5Sclose}; }
+inline Id type(hid_t id) { return {id, H5Tclose}; }
+inline Id attribute(hid_t id) { return {id, H5Aclose}; }
+inline Id plist(hid_t id) { return {id, H5Pclose}; }
+
+/// Silences HDF5's own error printing: moreau reports its own messages.
+inline void quiet() { H5Eset_auto2(H5E_DEFAULT, nullptr, nullptr); }
+
+void write_doubles(hid_t where, const std::string& name, const double* data, hsize_t rows, hsize_t cols);
+void write_int8(hid_t where, const std::string& name, const std::vector<signed char>& data);
+void write_int32(hid_t where, const std::string& name, const int* data, hsize_t rows, hsize_t cols);
+void write_strings(hid_t where, const std::string& name, const std::vector<std::string>& strings);
+void attribute_double(hid_t where, const std::string& name, double value);
+void attribute_long(hid_t where, const std::string& name, long value);
+void attribute_string(hid_t where, const std::string& name, const std::string& value);
+
+bool exists(hid_t where, const std::string& path);
+/// Reads a dataset of doubles; `shape` gets its dimensions. Throws InputError on faults.
+std::vector<double> read_doubles(hid_t where, const std::string& path, std::vector<hsize_t>* shape,
+                                 const std::string& file);
+double read_attribute_double(hid_t where, const std::string& name, const std::string& file, const std::string& path);
+std::string read_attribute_string(hid_t where, const std::string& name, const std::string& file, const std::string& path);
+std::vector<std::string> read_strings(hid_t where, const std::string& path, const std::string& file);
+/// Names of the links in a group, sorted by name.
+std::vector<std::string> children(hid_t group);
+
+}  // namespace moreau::io::h5
