@@ -38,23 +38,45 @@ inline void cross(const double* a, const double* b, double* out) {
   out[2] = a[0] * b[1] - a[1] * b[0];
 }
 
-/// q ← q ⊗ exp(φ/2) for a body-frame rotation vector φ, renormalised.
-inline void rotate_body(const double* q, const double* phi, double* out) {
-  const double a = std::sqrt(phi[0] * phi[0] + phi[1] * phi[1] + phi[2] * phi[2]);
-  double c, s;  // exp(φ/2) = (cos(a/2), sin(a/2) φ/a)
-  if (a < 1e-8) {
-    c = 1 - a * a / 8;
-    s = 0.5 - a * a / 48;  // sin(a/2)/a
+/// Unit quaternion exp(φ/2) of a rotation vector φ. Below 0.1 rad (every ordinary step)
+/// a Taylor series exact to double precision replaces sin and cos.
+inline void exp_half(const double* phi, double* p) {
+  const double a2 = phi[0] * phi[0] + phi[1] * phi[1] + phi[2] * phi[2];
+  double c, s;  // cos(a/2), sin(a/2)/a
+  if (a2 < 0.01) {
+    const double x = a2 / 4;  // (a/2)²; terms up to (a/2)^8 leave < 1e-19
+    c = 1 - x / 2 * (1 - x / 12 * (1 - x / 30 * (1 - x / 56)));
+    s = 0.5 * (1 - x / 6 * (1 - x / 20 * (1 - x / 42 * (1 - x / 72))));
   } else {
+    const double a = std::sqrt(a2);
     c = std::cos(0.5 * a);
     s = std::sin(0.5 * a) / a;
   }
-  const double pw = c, px = s * phi[0], py = s * phi[1], pz = s * phi[2];
-  const double w = q[0], x = q[1], y = q[2], z = q[3];
-  double r[4] = {w * pw - x * px - y * py - z * pz, w * px + x * pw + y * pz - z * py,
-                 w * py - x * pz + y * pw + z * px, w * pz + x * py - y * px + z * pw};
+  p[0] = c;
+  p[1] = s * phi[0];
+  p[2] = s * phi[1];
+  p[3] = s * phi[2];
+}
+
+/// out = p ⊗ q, renormalised.
+inline void quat_mul_normalised(const double* p, const double* q, double* out) {
+  const double r[4] = {p[0] * q[0] - p[1] * q[1] - p[2] * q[2] - p[3] * q[3],
+                       p[0] * q[1] + p[1] * q[0] + p[2] * q[3] - p[3] * q[2],
+                       p[0] * q[2] - p[1] * q[3] + p[2] * q[0] + p[3] * q[1],
+                       p[0] * q[3] + p[1] * q[2] - p[2] * q[1] + p[3] * q[0]};
   const double n = 1 / std::sqrt(r[0] * r[0] + r[1] * r[1] + r[2] * r[2] + r[3] * r[3]);
   for (int k = 0; k < 4; ++k) out[k] = r[k] * n;
+}
+
+/// out = p v p* for a unit quaternion p (v rotated by p).
+inline void quat_rotate(const double* p, const double* v, double* out) {
+  // t = 2 (u × v), out = v + w t + u × t, with p = (w, u).
+  const double u[3] = {p[1], p[2], p[3]};
+  double t[3], ut[3];
+  cross(u, v, t);
+  for (double& x : t) x *= 2;
+  cross(u, t, ut);
+  for (int k = 0; k < 3; ++k) out[k] = v[k] + p[0] * t[k] + ut[k];
 }
 
 /// Solves A x = b for a general 3×3 (row-major) by Cramer's rule (A well conditioned:

@@ -7,7 +7,7 @@
 // Rotations (3D) are integrated on SO(3): with Ω the body-frame angular velocity,
 // I(Ω⁺ − Ω⁻) = h[−Ω×IΩ + Rᵀτ]_θ is solved linearly implicitly (one Newton step from Ω⁻,
 // which keeps the θ = 0.5 scheme second order), and q⁺ = q⁻ ⊗ exp(h Ω_θ / 2) with
-// Ω_θ = (1−θ)Ω⁻ + θΩ⁺, so quaternions stay unit. Bodies with isotropic inertia skip the
+// Ω_θ = (1−θ)Ω⁻ + θΩ⁺ (computed in world axes as exp(φ/2) ⊗ q⁻), so quaternions stay unit. Bodies with isotropic inertia skip the
 // gyroscopic solve (Ω×IΩ = 0). Contact impulses act with the world inverse inertia at
 // the start of the step, R⁻ I⁻¹ R⁻ᵀ, which is what contact_inverse_mass() reports.
 #include <cmath>
@@ -189,13 +189,14 @@ class Theta : public Integrator {
         // No gyroscopic term: ω_free = ω + h I⁻¹ τ in any frame.
         for (int k = 0; k < 3; ++k) wf[k] = w[k] + (f.T ? h * ii[0] * f.T[3 * i + k] : 0.0);
       } else {
-        double Rm[9], W[3], IW[3], WxIW[3], rhs[3], dW[3];
-        quat_to_matrix(f.q0 + 4 * i, Rm);
-        mul_transpose(Rm, w, W);  // body frame
+        const double* q = f.q0 + 4 * i;
+        const double qc[4] = {q[0], -q[1], -q[2], -q[3]};  // world → body
+        double W[3], IW[3], WxIW[3], rhs[3], dW[3];
+        quat_rotate(qc, w, W);
         sym_mul(I, W, IW);
         cross(W, IW, WxIW);
         double Tb[3] = {0, 0, 0};
-        if (f.T) mul_transpose(Rm, f.T + 3 * i, Tb);
+        if (f.T) quat_rotate(qc, f.T + 3 * i, Tb);
         for (int k = 0; k < 3; ++k) rhs[k] = h * (Tb[k] - WxIW[k]);
         // A = I + hθ J, J = ∂(Ω×IΩ)/∂Ω = [Ω]× I − [IΩ]×
         const double Im[9] = {I[0], I[3], I[4], I[3], I[1], I[5], I[4], I[5], I[2]};
@@ -209,7 +210,7 @@ class Theta : public Integrator {
           }
         solve3(A, rhs, dW);
         for (int k = 0; k < 3; ++k) W[k] += dW[k];
-        mul(Rm, W, wf);  // world axes at the start of the step
+        quat_rotate(q, W, wf);  // world axes at the start of the step
       }
       if (f.imp) impose(f.imp + 6 * i, vf, 3, wf, 3);
     }
@@ -224,11 +225,11 @@ class Theta : public Integrator {
       const double* q0 = f.q0 + 4 * i;
       double* q1 = f.q1 + 4 * i;
       const bool fixed = f.im[i] == 0;
-      double Rm[9];
-      quat_to_matrix(q0, Rm);
       if (f.P && !fixed) {
+        // Contact impulses: Δv = P/m, Δω̃ = R⁻ I⁻¹ R⁻ᵀ L.
+        double Rm[9], Lb[3], dW[3], dw[3];
+        quat_to_matrix(q0, Rm);
         const double* ii = f.ii + 6 * i;
-        double Lb[3], dW[3], dw[3];
         for (int k = 0; k < 3; ++k) v[k] += f.im[i] * f.P[3 * i + k];
         mul_transpose(Rm, f.L + 3 * i, Lb);
         sym_mul(ii, Lb, dW);
@@ -247,14 +248,15 @@ class Theta : public Integrator {
         for (int k = 0; k < 3; ++k) f.w1[3 * i + k] = w[k];
         continue;
       }
-      // Body-frame rates at both ends (Ω⁺ from ω̃⁺ = R⁻ Ω⁺), rotation by h Ω_θ.
-      double W0[3], W1[3], phi[3], R1[9];
-      mul_transpose(Rm, f.w0 + 3 * i, W0);
-      mul_transpose(Rm, w, W1);
-      for (int k = 0; k < 3; ++k) phi[k] = h * ((1 - th) * W0[k] + th * W1[k]);
-      rotate_body(q0, phi, q1);
-      quat_to_matrix(q1, R1);
-      mul(R1, W1, f.w1 + 3 * i);
+      // Rotation by h Ω_θ in the body frame, i.e. by φ = h[(1−θ)ω⁻ + θω̃⁺] in world axes
+      // at the start of the step: q⁺ = exp(φ/2) ⊗ q⁻, and ω⁺ = R⁺ Ω⁺ = exp(φ/2) ω̃⁺.
+      const double* w0 = f.w0 + 3 * i;
+      const double phi[3] = {h * ((1 - th) * w0[0] + th * w[0]), h * ((1 - th) * w0[1] + th * w[1]),
+                             h * ((1 - th) * w0[2] + th * w[2])};
+      double p[4];
+      exp_half(phi, p);
+      quat_mul_normalised(p, q0, q1);
+      quat_rotate(p, w, f.w1 + 3 * i);
       if (f.imp) impose(f.imp + 6 * i, f.v1 + 3 * i, 3, f.w1 + 3 * i, 3);  // imposed in world axes at t⁺
     }
   }
