@@ -21,6 +21,7 @@ class Context : public HookContext {
   long step() const override { return step_.step; }
   double time() const override { return step_.time; }
   double time_step() const override { return step_.h; }
+  const std::vector<double>& gravity() const override { return step_.gravity; }
   const State& state() const override { return step_.state; }
   State& steer() override {
     if (static_cast<int>(stage_) >= static_cast<int>(Stage::solve))

@@ -20,6 +20,7 @@ class MOREAU_API HookContext {
   virtual long step() const = 0;       ///< index of the current step
   virtual double time() const = 0;     ///< t⁻ of the current step (s)
   virtual double time_step() const = 0;
+  virtual const std::vector<double>& gravity() const = 0;  ///< d components (m/s²)
   virtual const State& state() const = 0;
   /// Writable state; throws RunError from the solve stage on (read-only there).
   virtual State& steer() = 0;
