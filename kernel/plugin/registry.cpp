@@ -51,7 +51,7 @@ fs::path Registry::installed_folder() {
   std::error_code ec;
   fs::path exe = fs::read_symlink("/proc/self/exe", ec);
   if (ec) return {};
-  return exe.parent_path().parent_path() / "lib" / "moreau" / "plugins";
+  return exe.parent_path().parent_path() / MOREAU_PLUGIN_RELDIR;
 }
 
 std::vector<fs::path> Registry::standard_paths(const std::vector<std::string>& scene_paths, const fs::path& scene_dir) {

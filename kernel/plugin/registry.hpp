@@ -30,7 +30,7 @@ class Registry {
   /// `scene_dir`), then each folder of MOREAU_PLUGIN_PATH, then the installed folder.
   static std::vector<std::filesystem::path> standard_paths(const std::vector<std::string>& scene_paths,
                                                            const std::filesystem::path& scene_dir);
-  /// The plugin folder next to the running executable (<prefix>/lib/moreau/plugins).
+  /// The plugin folder of the running executable's prefix (<prefix>/<libdir>/moreau/plugins).
   static std::filesystem::path installed_folder();
   /// File name of the library providing (kind, name).
   static std::string library_file_name(Kind kind, const std::string& name);
