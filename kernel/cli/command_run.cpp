@@ -12,7 +12,7 @@ namespace moreau::kernel {
 
 int command_run(const RunArgs& args, std::ostream& out, std::ostream& err) {
   return guarded(err, [&] {
-    auto world = build_world(args.scene);
+    auto world = build_world(args.scene, args.out.value_or(""));
     const std::string path = args.out ? *args.out : world->output.file;
     RunOptions opt;
     std::optional<long> continue_after;

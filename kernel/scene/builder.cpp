@@ -68,7 +68,7 @@ class SceneChecker {
     if (!errors_.empty()) throw_all();
   }
 
-  std::unique_ptr<World> build() {
+  std::unique_ptr<World> build(const std::string& output_path) {
     auto w = std::make_unique<World>(dim_);
     w->scene_file = file_.path;
     w->scene_text = file_.text;
@@ -86,6 +86,7 @@ class SceneChecker {
     ctx.time_step = w->h;
     ctx.scene_file = file_.path;
     ctx.scene_dir = fs::absolute(fs::path(file_.path)).parent_path().string();
+    ctx.output_dir = fs::absolute(fs::path(output_path.empty() ? w->output.file : output_path)).parent_path().string();
     std::vector<std::string> names;
     for (const auto& b : bodies_) names.push_back(b.name);
     ctx.body_index = [names](const std::string& name, const std::string& pointer) {
@@ -376,11 +377,11 @@ class SceneChecker {
 
 }  // namespace
 
-std::unique_ptr<World> build_world(const std::string& scene_path) {
+std::unique_ptr<World> build_world(const std::string& scene_path, const std::string& output_path) {
   JsonFile file = read_json_file(scene_path);
   SceneChecker checker(file);
   checker.check();
-  return checker.build();
+  return checker.build(output_path);
 }
 
 void check_scene(const std::string& scene_path) {

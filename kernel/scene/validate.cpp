@@ -75,6 +75,10 @@ void check_value(const ParamSpec& p, const nlohmann::json& j, const std::string&
       return;
     case ParamType::vector: {
       const int n = resolve_length(p.length, v.dimension);
+      if (n == 1 && j.is_number()) {  // a 2D rotation quantity may be written as a plain number
+        if (!in_range(p, j.get<double>())) fail("value " + fmt(j.get<double>()) + " out of range: expected " + range_text(p));
+        return;
+      }
       if (!j.is_array()) return fail("expected an array of " + (n > 0 ? std::to_string(n) + " " : std::string()) + "numbers, got " + type_of(j));
       if (n > 0 && static_cast<int>(j.size()) != n)
         return fail("expected " + std::to_string(n) + " numbers (dimension " + std::to_string(v.dimension) + "), got " +
@@ -156,6 +160,7 @@ nlohmann::json validate_object(const nlohmann::json& value, const Schema& schema
       continue;
     }
     check_value(p, value.at(p.name), ptr, v);
+    if (p.type == ParamType::vector && value.at(p.name).is_number()) out[p.name] = nlohmann::json::array({value.at(p.name)});
   }
   return out;
 }

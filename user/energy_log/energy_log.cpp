@@ -20,7 +20,7 @@ class EnergyLog : public Hook {
  public:
   static Schema schema() {
     Schema s;
-    s.string("file", "CSV file (relative to the scene's folder)").fallback("energy.csv");
+    s.string("file", "CSV file (relative to the folder of the run's output file)").fallback("energy.csv");
     s.integer("every", "a line every N steps").min(1).fallback(1);
     return s;
   }
@@ -28,7 +28,7 @@ class EnergyLog : public Hook {
 
   EnergyLog(const Params& p, const BuildContext& ctx) : every_(p.integer("every")) {
     std::filesystem::path path(p.string("file"));
-    if (path.is_relative()) path = std::filesystem::path(ctx.scene_dir) / path;
+    if (path.is_relative()) path = std::filesystem::path(ctx.output_dir) / path;
     path_ = path.string();
   }
   ~EnergyLog() override {

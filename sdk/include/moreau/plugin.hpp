@@ -70,7 +70,8 @@ struct BuildContext {
   int dimension = 3;
   double time_step = 0;
   std::string scene_file;  ///< path of the scene, for messages
-  std::string scene_dir;   ///< folder of the scene: relative paths in parameters resolve here
+  std::string scene_dir;   ///< folder of the scene (relative input paths resolve here)
+  std::string output_dir;  ///< folder of the run's output file (relative output paths resolve here)
   /// Index of the body named `name`; throws InputError at `pointer` if there is none.
   std::function<int(const std::string& name, const std::string& pointer)> body_index;
 };
