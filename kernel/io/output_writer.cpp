@@ -161,6 +161,7 @@ void OutputWriter::write_frame(long step, double time, const State& state, long 
     h5::write_doubles(c.get(), "impulse", contacts->impulse.data(), nc, d);
     h5::write_doubles(c.get(), "force", contacts->force.data(), nc, d);
     h5::write_int8(c.get(), "status", contacts->status);
+    h5::write_int32(c.get(), "key", contacts->keys.data(), nc, 3);
   }
   m.flush();
   if (H5Lexists(root, ("/frames/" + name).c_str(), H5P_DEFAULT) > 0)

@@ -34,6 +34,7 @@ struct ContactFrame {
   std::vector<double> impulse;      ///< nc × d, local frame, normal first
   std::vector<double> force;        ///< nc × d, world frame
   std::vector<signed char> status;  ///< nc: 0 open, 1 sticking, 2 sliding
+  std::vector<int> keys;            ///< nc × 3: contactor, contactor, feature (warm start on restart)
   std::size_t size() const { return gap.size(); }
 };
 

@@ -2,6 +2,8 @@
 // Where the run's frames go (the HDF5 output writer, or nothing).
 #include <moreau/state.hpp>
 
+#include "../io/output_writer.hpp"
+
 namespace moreau::kernel {
 
 struct SolverInfo {
@@ -14,7 +16,8 @@ class FrameSink {
   virtual ~FrameSink() = default;
   /// The state after `step` completed steps (time = step·h), end-of-step values in
   /// Depth::begin (depths were swapped at end_step).
-  virtual void write_frame(long step, double time, const State& state, const SolverInfo& solver) = 0;
+  virtual void write_frame(long step, double time, const State& state, const SolverInfo& solver,
+                           const io::ContactFrame* contacts) = 0;
   /// The run ended normally: finalise (the file is valid before this too).
   virtual void close() = 0;
 };

@@ -12,8 +12,9 @@ namespace {
 class Hdf5Sink : public FrameSink {
  public:
   explicit Hdf5Sink(std::unique_ptr<io::OutputWriter> w) : w_(std::move(w)) {}
-  void write_frame(long step, double time, const State& state, const SolverInfo& solver) override {
-    w_->write_frame(step, time, state, solver.iterations, solver.error, nullptr);
+  void write_frame(long step, double time, const State& state, const SolverInfo& solver,
+                   const io::ContactFrame* contacts) override {
+    w_->write_frame(step, time, state, solver.iterations, solver.error, contacts);
   }
   void close() override { w_->close(); }
 

@@ -61,6 +61,15 @@ void Scheduler::build_stages() {
   }
   if (w_.model && w_.model->has_bulk()) stages_[static_cast<int>(Stage::bulk)] = [this](StepContext& c) { w_.model->bulk(c); };
   stages_[static_cast<int>(Stage::free_velocity)] = [this](StepContext& c) { w_.integrator->free_velocity(c); };
+  if (w_.contacts) {
+    ContactStages& c = *w_.contacts;
+    stages_[static_cast<int>(Stage::detection_configuration)] = [&c](StepContext& x) { c.detection_configuration(x); };
+    stages_[static_cast<int>(Stage::broad_phase)] = [&c](StepContext& x) { c.broad_phase(x); };
+    stages_[static_cast<int>(Stage::narrow_phase)] = [&c](StepContext& x) { c.narrow_phase(x); };
+    stages_[static_cast<int>(Stage::warm_start)] = [&c](StepContext& x) { c.warm_start(x); };
+    stages_[static_cast<int>(Stage::solve)] = [this, &c](StepContext& x) { c.solve(x, *w_.integrator); };
+    stages_[static_cast<int>(Stage::store_reactions)] = [&c](StepContext& x) { c.store_reactions(x); };
+  }
   stages_[static_cast<int>(Stage::update_dofs)] = [this](StepContext& c) { w_.integrator->update_dofs(c); };
   stages_[static_cast<int>(Stage::end_step)] = [](StepContext& c) { c.state.swap_depths(); };
 }
@@ -106,7 +115,13 @@ RunSummary Scheduler::run(const RunOptions& opt) {
     if (!opt.sink) return;
     check_finite(step);
     const auto t0 = StageTimer::clock::now();
-    opt.sink->write_frame(step, static_cast<double>(step) * w_.h, w_.state, SolverInfo{});
+    if (w_.contacts) {
+      const io::ContactFrame f = w_.contacts->frame(w_.dimension, w_.h);
+      opt.sink->write_frame(step, static_cast<double>(step) * w_.h, w_.state,
+                            SolverInfo{w_.contacts->last_iterations(), w_.contacts->last_error()}, &f);
+    } else {
+      opt.sink->write_frame(step, static_cast<double>(step) * w_.h, w_.state, SolverInfo{}, nullptr);
+    }
     sum.timer.add(Stage::output, StageTimer::clock::now() - t0);
   };
   auto run_hooks = [&](Stage s, When when) {

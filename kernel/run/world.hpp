@@ -12,6 +12,7 @@
 #include <string>
 #include <vector>
 
+#include "../contact/contact_stages.hpp"
 #include "../plugin/owned.hpp"
 #include "../plugin/registry.hpp"
 
@@ -49,6 +50,7 @@ struct World {
   std::vector<Owned<Force>> forces;
   std::vector<Owned<Hook>> hooks;
   std::vector<Driver> drivers;
+  std::unique_ptr<ContactStages> contacts;  ///< null when the scene has no interactions
 
   explicit World(int dim = 3) : state(dim) {}
 };

@@ -5,6 +5,7 @@
 #include <moreau/error.hpp>
 #include <moreau/imposed_velocity.hpp>
 #include <optional>
+#include <map>
 #include <set>
 
 #include "json_file.hpp"
@@ -63,7 +64,20 @@ class SceneChecker {
     if (time_.contains("integrator")) integrator_ = plugin_use(Kind::integrator, time_["integrator"], "/time/integrator");
     check_plugin_list(Kind::force, "forces", forces_);
     check_plugin_list(Kind::hook, "hooks", hooks_);
-    if (!top_["solver"].empty()) solver_ = plugin_use(Kind::solver, top_["solver"], "/solver", "auto");
+    if (!top_["solver"].empty() || has_interactions()) {
+      solver_ = plugin_use(Kind::solver, top_["solver"], "/solver", "nlgs", {"on_failure"});
+      const json& sv = top_["solver"];
+      if (sv.is_object() && sv.contains("on_failure")) {
+        const json& f = sv["on_failure"];
+        if (!f.is_string() || (f != "warn" && f != "stop"))
+          errors_.emplace_back("/solver/on_failure", "expected \"warn\" or \"stop\"");
+        else stop_on_failure_ = f == "stop";
+      }
+    }
+    if (has_interactions()) {
+      broadphase_ = plugin_use(Kind::broadphase, detection_["broadphase"], "/detection/broadphase");
+      check_detectors();
+    }
 
     if (!errors_.empty()) throw_all();
   }
@@ -100,16 +114,33 @@ class SceneChecker {
       Registry& reg = *w->registry;
       if (!bodies_.empty()) {
         const auto& m = bodies_.front().model;
-        w->model = reg.create<Modelization>(m.name, m.params, ctx, m.pointer);
+        w->model = reg.create<Modelization>(m.name, Params(json::object(), "/bodies"), ctx, m.pointer);
         w->state.declare(w->model->fields(dim_));
       }
       w->state.add_bodies(names);
+      std::vector<Contactor> contactors;
+      std::map<std::string, int> group_index;
+      for (const auto& in : interactions_)
+        for (const auto& g : {in.a, in.b}) group_index.emplace(g, static_cast<int>(group_index.size()));
       for (std::size_t i = 0; i < bodies_.size(); ++i) {
         const auto& b = bodies_[i];
         std::optional<double> density;
         if (!b.material.empty()) density = materials_.at(b.material);
-        w->model->init_body(w->state, i, b.model.params, std::nullopt, density);
+        // Shapes: one object per contactor; their mass properties add up.
+        std::optional<MassProperties> mass;
+        for (const auto& c : b.contactors) {
+          json params = c.params.json();
+          params.erase("shape");
+          params.erase("group");
+          Owned<Shape> shape = reg.create<Shape>(c.name, Params(params, c.pointer), ctx, c.pointer + "/shape");
+          if (shape->has_mass()) mass = add(mass, shape->mass_properties());
+          const std::string group = c.params.string("group");
+          if (group_index.count(group))  // contactors of groups no interaction names are never detected
+            contactors.push_back(Contactor{static_cast<int>(i), group_index.at(group), std::move(shape)});
+        }
+        w->model->init_body(w->state, i, b.model.params, mass, density);
       }
+      if (!interactions_.empty()) build_contacts(*w, reg, ctx, std::move(contactors), group_index);
       for (const auto& d : drivers_) w->drivers.push_back(d);
       if (!w->drivers.empty() || !hooks_.empty()) {
         Field& f = w->state.declare(imposed_velocity_field());
@@ -133,6 +164,54 @@ class SceneChecker {
     std::vector<PluginUse> contactors;
   };
 
+  static MassProperties add(const std::optional<MassProperties>& sum, const MassProperties& m) {
+    if (!sum) return m;
+    MassProperties out;
+    out.volume = sum->volume + m.volume;
+    for (int k = 0; k < 3; ++k)
+      out.center[k] = out.volume > 0 ? (sum->center[k] * sum->volume + m.center[k] * m.volume) / out.volume : 0.0;
+    // Parallel-axis theorem: both parts' inertia moved to the common centre.
+    for (const MassProperties* part : {&*sum, &m}) {
+      double dlt[3];
+      for (int k = 0; k < 3; ++k) dlt[k] = part->center[k] - out.center[k];
+      const double d2 = dlt[0] * dlt[0] + dlt[1] * dlt[1] + dlt[2] * dlt[2];
+      for (int i = 0; i < 3; ++i)
+        for (int j = 0; j < 3; ++j)
+          out.inertia[3 * i + j] += part->inertia[3 * i + j] + part->volume * ((i == j ? d2 : 0.0) - dlt[i] * dlt[j]);
+    }
+    return out;
+  }
+
+  void build_contacts(World& w, Registry& reg, const BuildContext& ctx, std::vector<Contactor> contactors,
+                      const std::map<std::string, int>& group_index) {
+    auto cs = std::make_unique<ContactStages>();
+    cs->contactors = std::move(contactors);
+    cs->groups = static_cast<int>(group_index.size());
+    cs->law_of.assign(static_cast<std::size_t>(cs->groups) * cs->groups, -1);
+    std::map<std::string, int> law_index;
+    for (const auto& [name, use] : laws_) {
+      law_index[name] = static_cast<int>(cs->laws.size());
+      cs->laws.push_back(reg.create<Law>(use.name, use.params, ctx, use.pointer));
+    }
+    for (const auto& in : interactions_) {
+      const int a = group_index.at(in.a), b = group_index.at(in.b), l = law_index.at(in.law);
+      cs->law_of[a * cs->groups + b] = cs->law_of[b * cs->groups + a] = l;
+    }
+    std::map<std::string, const Detector*> made;
+    for (const auto& [pair, use] : detector_uses_) {
+      if (!made.count(use.first)) {
+        cs->detector_objects.push_back(reg.create<Detector>(use.first, Params(json::object(), "/interactions"), ctx));
+        made[use.first] = cs->detector_objects.back().get();
+      }
+      cs->detectors.push_back(DetectorUse{pair.first, pair.second, made[use.first], use.second});
+    }
+    cs->broadphase = reg.create<BroadPhase>(broadphase_.name, broadphase_.params, ctx, broadphase_.pointer);
+    cs->solver = reg.create<Solver>(solver_.name, solver_.params, ctx, solver_.pointer);
+    cs->alert = detection_["alert"].get<double>();
+    cs->stop_on_failure = stop_on_failure_;
+    w.contacts = std::move(cs);
+  }
+
   [[noreturn]] void fail_now(const std::string& ptr, const std::string& msg) {
     errors_.emplace_back(ptr, msg);
     throw_all();
@@ -145,7 +224,8 @@ class SceneChecker {
 
   /// Looks the plugin up (loading its library) and validates its parameters.
   /// `spec` is either a name or an object {"type": name, ...parameters}.
-  PluginUse plugin_use(Kind kind, const json& spec, const std::string& ptr, const std::string& default_type = "") {
+  PluginUse plugin_use(Kind kind, const json& spec, const std::string& ptr, const std::string& default_type = "",
+                       const std::vector<std::string>& kernel_keys = {}) {
     PluginUse use;
     use.pointer = ptr;
     json params = json::object();
@@ -171,9 +251,11 @@ class SceneChecker {
     if (!e) return use;
     check_dimension(*e, type_ptr);
     Validation v{dim_, errors_};
-    use.params = Params(validate_object(spec.is_object() ? spec : json::object(), e->registration.schema, ptr, v, {"type"}), ptr);
+    std::vector<std::string> allowed = kernel_keys;
+    allowed.push_back("type");
+    use.params = Params(validate_object(spec.is_object() ? spec : json::object(), e->registration.schema, ptr, v, allowed), ptr);
     json filled = use.params.json();
-    filled.erase("type");
+    for (const auto& k : allowed) filled.erase(k);
     use.params = Params(filled, ptr);
     return use;
   }
@@ -349,10 +431,52 @@ class SceneChecker {
                                "no contactor has group \"" + g[k].get<std::string>() + "\"");
       const std::string law = in["law"].get<std::string>();
       if (!laws_.count(law)) errors_.emplace_back(ptr + "/law", "no law named \"" + law + "\" in \"laws\"");
+      interactions_.push_back({g[0].get<std::string>(), g[1].get<std::string>(), law, ptr});
     }
-    if (!is.empty())
-      errors_.emplace_back("/interactions", "contact interactions are not available in this build yet (contact "
-                                            "dynamics is the next milestone); remove \"interactions\"");
+  }
+
+  bool has_interactions() const {
+    return top_.contains("interactions") && top_["interactions"].is_array() && !top_["interactions"].empty();
+  }
+
+  /// Every pair of shape names that interacting groups can bring together needs a detector.
+  void check_detectors() {
+    for (const auto& in : interactions_) {
+      std::set<std::string> shapes_a, shapes_b;
+      for (const auto& b : bodies_)
+        for (const auto& c : b.contactors) {
+          if (!c.params.has("group")) continue;
+          if (c.params.string("group") == in.a) shapes_a.insert(c.name);
+          if (c.params.string("group") == in.b) shapes_b.insert(c.name);
+        }
+      for (const auto& sa : shapes_a)
+        for (const auto& sb : shapes_b) {
+          if (detector_uses_.count({sa, sb})) continue;
+          const RegistryEntry* e = nullptr;
+          bool swap = false;
+          try {
+            e = registry_->find(Kind::detector, sa + "-" + sb);
+            if (!e) {
+              e = registry_->find(Kind::detector, sb + "-" + sa);
+              swap = true;
+            }
+          } catch (const InputError& err) {
+            errors_.push_back(InputError(in.pointer, err.what() + std::string(" (library ") + err.file() + ")"));
+            continue;
+          }
+          if (!e) {
+            auto names = registry_->available(Kind::detector);
+            std::string list;
+            for (const auto& n : names) list += (list.empty() ? "" : ", ") + n;
+            errors_.emplace_back(in.pointer + "/groups", "no detector for shapes \"" + sa + "\" and \"" + sb +
+                                                             "\" (looked for detector \"" + sa + "-" + sb + "\" or \"" +
+                                                             sb + "-" + sa + "\"; available: " + list + ")");
+            continue;
+          }
+          detector_uses_[{sa, sb}] = {e->registration.name, swap};
+          detector_uses_[{sb, sa}] = {e->registration.name, !swap};
+        }
+    }
   }
 
   void check_plugin_list(Kind kind, const char* key, std::vector<PluginUse>& out) {
@@ -371,7 +495,13 @@ class SceneChecker {
   std::map<std::string, PluginUse> laws_;
   std::vector<BodyUse> bodies_;
   std::vector<Driver> drivers_;
-  PluginUse integrator_, solver_;
+  PluginUse integrator_, solver_, broadphase_;
+  struct InteractionUse {
+    std::string a, b, law, pointer;
+  };
+  std::vector<InteractionUse> interactions_;
+  std::map<std::pair<std::string, std::string>, std::pair<std::string, bool>> detector_uses_;
+  bool stop_on_failure_ = false;
   std::vector<PluginUse> forces_, hooks_;
 };
 

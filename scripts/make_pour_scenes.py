@@ -1,0 +1,89 @@
+#!/usr/bin/env python3
+"""Writes the poured-grain example scenes of configs/ (deterministic: seeded).
+
+    /usr/bin/python3 scripts/make_pour_scenes.py
+"""
+import json
+import random
+from pathlib import Path
+
+CONFIGS = Path(__file__).resolve().parent.parent / "configs"
+
+
+def disks_in_box_2d(n_x=12, n_y=16, radius=0.01, seed=1):
+    rng = random.Random(seed)
+    width = n_x * 2.5 * radius
+    bodies = [
+        {"name": "floor", "fixed": True, "position": [0, -0.005], "angle": 0,
+         "contactors": [{"shape": "segment", "length": width + 0.02, "thickness": 0.01, "group": "wall"}]},
+        {"name": "left", "fixed": True, "position": [-width / 2 - 0.005, 0.4], "angle": 1.5707963267948966,
+         "contactors": [{"shape": "segment", "length": 0.8, "thickness": 0.01, "group": "wall"}]},
+        {"name": "right", "fixed": True, "position": [width / 2 + 0.005, 0.4], "angle": 1.5707963267948966,
+         "contactors": [{"shape": "segment", "length": 0.8, "thickness": 0.01, "group": "wall"}]},
+    ]
+    k = 0
+    for j in range(n_y):
+        for i in range(n_x):
+            r = radius * rng.uniform(0.8, 1.0)
+            x = -width / 2 + (i + 0.5) * 2.5 * radius + rng.uniform(-0.2, 0.2) * radius
+            y = 0.05 + j * 2.5 * radius
+            bodies.append({"name": f"d{k}", "material": "grain", "position": [round(x, 6), round(y, 6)],
+                           "velocity": [round(rng.uniform(-0.1, 0.1), 4), 0],
+                           "contactors": [{"shape": "disk", "radius": round(r, 6), "group": "grain"}]})
+            k += 1
+    return {
+        "format": "moreau-scene/1",
+        "dimension": 2,
+        "time": {"step": 5e-4, "duration": 1.0, "theta": 0.5},
+        "gravity": [0, -9.81],
+        "materials": {"grain": {"density": 2600}},
+        "laws": {"grain_grain": {"type": "coulomb", "friction": 0.3},
+                 "grain_wall": {"type": "coulomb", "friction": 0.5}},
+        "bodies": bodies,
+        "interactions": [{"groups": ["grain", "grain"], "law": "grain_grain"},
+                         {"groups": ["grain", "wall"], "law": "grain_wall"}],
+        "detection": {"broadphase": "grid", "alert": 0.002},
+        "solver": {"type": "nlgs", "tolerance": 1e-5, "max_iterations": 300},
+        "output": {"file": "disks_in_box_2d.h5", "every": 40},
+    }
+
+
+def spheres_in_box_3d(n=6, layers=8, radius=0.01, seed=2):
+    rng = random.Random(seed)
+    half = n * 2.5 * radius / 2
+    planes = [("floor", [0, 0, 0], [0, 0, 1]), ("x0", [-half, 0, 0], [1, 0, 0]), ("x1", [half, 0, 0], [-1, 0, 0]),
+              ("y0", [0, -half, 0], [0, 1, 0]), ("y1", [0, half, 0], [0, -1, 0])]
+    bodies = [{"name": name, "fixed": True, "position": p,
+               "contactors": [{"shape": "plane", "normal": nrm, "group": "wall"}]} for name, p, nrm in planes]
+    k = 0
+    for l in range(layers):
+        for j in range(n):
+            for i in range(n):
+                x = -half + (i + 0.5) * 2.5 * radius + rng.uniform(-0.2, 0.2) * radius
+                y = -half + (j + 0.5) * 2.5 * radius + rng.uniform(-0.2, 0.2) * radius
+                z = 0.03 + l * 2.5 * radius
+                bodies.append({"name": f"s{k}", "material": "grain", "position": [round(x, 6), round(y, 6), round(z, 6)],
+                               "contactors": [{"shape": "sphere", "radius": round(radius * rng.uniform(0.85, 1.0), 6),
+                                               "group": "grain"}]})
+                k += 1
+    return {
+        "format": "moreau-scene/1",
+        "dimension": 3,
+        "time": {"step": 5e-4, "duration": 0.6, "theta": 0.5},
+        "gravity": [0, 0, -9.81],
+        "materials": {"grain": {"density": 2600}},
+        "laws": {"grain_grain": {"type": "coulomb", "friction": 0.3},
+                 "grain_wall": {"type": "coulomb", "friction": 0.3}},
+        "bodies": bodies,
+        "interactions": [{"groups": ["grain", "grain"], "law": "grain_grain"},
+                         {"groups": ["grain", "wall"], "law": "grain_wall"}],
+        "detection": {"broadphase": "grid", "alert": 0.002},
+        "solver": {"type": "nlgs", "tolerance": 1e-5, "max_iterations": 300},
+        "output": {"file": "spheres_in_box_3d.h5", "every": 40},
+    }
+
+
+if __name__ == "__main__":
+    for name, scene in [("disks_in_box_2d.json", disks_in_box_2d()), ("spheres_in_box_3d.json", spheres_in_box_3d())]:
+        (CONFIGS / name).write_text(json.dumps(scene, indent=1) + "\n")
+        print("wrote", CONFIGS / name)

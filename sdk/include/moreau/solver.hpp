@@ -1,0 +1,22 @@
+#pragma once
+// A contact solver (DESIGN §1): the same objects serve the time-stepper and
+// `moreau fclib solve`. Parameters (tolerance, max_iterations, …) come from its schema.
+#include <moreau/contact_problem.hpp>
+#include <moreau/plugin.hpp>
+
+namespace moreau {
+
+struct SolverReport {
+  long iterations = 0;
+  double error = 0;      ///< DESIGN §1 error, recomputed from the returned r
+  bool converged = false;
+};
+
+class MOREAU_API Solver : public Plugin {
+ public:
+  static constexpr Kind kind = Kind::solver;
+  /// `r`: the warm start on entry (dim·nc values), the solution on exit; `u` = W r + q.
+  virtual SolverReport solve(const LocalProblem& problem, Eigen::VectorXd& r, Eigen::VectorXd& u) = 0;
+};
+
+}  // namespace moreau
