@@ -25,17 +25,45 @@ const DetectorUse* ContactStages::detector_for(const std::string& a, const std::
 }
 
 void ContactStages::detection_configuration(StepContext& c) {
-  // Contacts are detected on the configuration at the start of the step (q⁻); the gap
-  // term of the laws and the alert distance make them predictive.
+  // Contacts are detected on the predicted configuration q_θ = q⁻ + (1−θ) h v⁻ (LMGC90's
+  // choice): the θ-scheme moves bodies from there by θ h v⁺, so a constraint on v⁺ with
+  // the gap at q_θ keeps contacts from closing further during the step.
   const State& st = c.state;
   const int d = st.dimension();
   const std::size_t nb = st.bodies();
+  const double a = (1 - c.theta) * c.h;
   poses_.assign(nb * 7, 0.0);
   const double* x = st.field(R::position).data(Depth::begin);
+  const double* v = st.field(R::velocity).data(Depth::begin);
+  const double* w = st.field(R::angular_velocity).data(Depth::begin);
   const double* q = st.field(d == 2 ? R::angle : R::orientation).data(Depth::begin);
+  sweep_.assign(nb, 0.0);
+  double g_norm = 0;
+  for (double gk : c.gravity) g_norm += gk * gk;
+  g_norm = std::sqrt(g_norm);
   for (std::size_t b = 0; b < nb; ++b) {
-    for (int k = 0; k < d; ++k) poses_[7 * b + k] = x[d * b + k];
-    for (int k = 0; k < (d == 2 ? 1 : 4); ++k) poses_[7 * b + 3 + k] = q[(d == 2 ? 1 : 4) * b + k];
+    double* pose = &poses_[7 * b];
+    // How far the body may travel in the step (from its start velocity, with margin):
+    // contacts are looked for that much further, so a fast body does not tunnel.
+    double v2 = 0;
+    for (int k = 0; k < d; ++k) v2 += v[d * b + k] * v[d * b + k];
+    sweep_[b] = 2 * c.h * std::sqrt(v2) + c.h * c.h * g_norm;
+    for (int k = 0; k < d; ++k) pose[k] = x[d * b + k] + a * v[d * b + k];
+    if (d == 2) {
+      pose[3] = q[b] + a * w[b];
+    } else {
+      // q_θ = exp(a ω / 2) ⊗ q⁻ (ω in the world frame); first order is enough for a
+      // detection configuration, renormalised.
+      const double* qb = q + 4 * b;
+      const double* wb = w + 3 * b;
+      const double p[4] = {1, 0.5 * a * wb[0], 0.5 * a * wb[1], 0.5 * a * wb[2]};
+      double r[4] = {p[0] * qb[0] - p[1] * qb[1] - p[2] * qb[2] - p[3] * qb[3],
+                     p[0] * qb[1] + p[1] * qb[0] + p[2] * qb[3] - p[3] * qb[2],
+                     p[0] * qb[2] - p[1] * qb[3] + p[2] * qb[0] + p[3] * qb[1],
+                     p[0] * qb[3] + p[1] * qb[2] - p[2] * qb[1] + p[3] * qb[0]};
+      const double n = 1 / std::sqrt(r[0] * r[0] + r[1] * r[1] + r[2] * r[2] + r[3] * r[3]);
+      for (int k = 0; k < 4; ++k) pose[3 + k] = r[k] * n;
+    }
   }
   const std::size_t n = contactors.size();
   bp_.dim = d;
@@ -50,9 +78,9 @@ void ContactStages::detection_configuration(StepContext& c) {
     const Contactor& ct = contactors[i];
     Pose p{&poses_[7 * ct.body], &poses_[7 * ct.body + 3]};
     ct.shape->bounds(d, p, &bp_.lo[3 * i], &bp_.hi[3 * i]);
-    for (int k = 0; k < 3; ++k) {  // grow by half the alert distance each
-      bp_.lo[3 * i + k] -= alert / 2;
-      bp_.hi[3 * i + k] += alert / 2;
+    for (int k = 0; k < 3; ++k) {  // grow by half the alert distance each, and by the sweep
+      bp_.lo[3 * i + k] -= alert / 2 + sweep_[ct.body];
+      bp_.hi[3 * i + k] += alert / 2 + sweep_[ct.body];
     }
     bp_.body[i] = ct.body;
     bp_.group[i] = ct.group;
@@ -74,7 +102,8 @@ void ContactStages::narrow_phase(StepContext& c) {
     const Contactor& s = contactors[second];
     scratch_.clear();
     use->detector->detect(d, *f.shape, Pose{&poses_[7 * f.body], &poses_[7 * f.body + 3]}, *s.shape,
-                          Pose{&poses_[7 * s.body], &poses_[7 * s.body + 3]}, alert, scratch_);
+                          Pose{&poses_[7 * s.body], &poses_[7 * s.body + 3]}, alert + sweep_[f.body] + sweep_[s.body],
+                          scratch_);
     const int law = law_of[f.group * groups + s.group];
     for (const auto& p : scratch_) contacts_.push_back(Detected{{first, second}, p, law, contact_key(first, second, p.feature)});
   }
@@ -112,6 +141,7 @@ void ContactStages::solve(StepContext& c, const Integrator& integrator) {
   for (std::size_t b = 0; b < nb; ++b) {
     if (!touched[b]) continue;
     integrator.contact_inverse_mass(st, b, &bodies.inverse_mass[b * kk * kk], &bodies.com[3 * b]);
+    for (int k = 0; k < 3; ++k) bodies.com[3 * b + k] = poses_[7 * b + k];  // the detection configuration
     for (int k = 0; k < d; ++k) {
       bodies.free_velocity[b * kk + k] = vf[b * d + k];
       v0[b * kk + k] = vb[b * d + k];

@@ -70,6 +70,7 @@ class ContactStages {
   const DetectorUse* detector_for(const std::string& a, const std::string& b) const;
 
   std::vector<double> poses_;  ///< per body: position (3) then rotation (4: 2D angle in [0])
+  std::vector<double> sweep_;  ///< per body: distance it may travel in the step (m)
   BroadPhaseInput bp_;
   std::vector<std::pair<int, int>> pairs_;
   std::vector<Detected> contacts_;

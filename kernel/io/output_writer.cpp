@@ -1,5 +1,6 @@
 #include "output_writer.hpp"
 
+#include <chrono>
 #include <cmath>
 #include <cstdio>
 #include <filesystem>
@@ -49,6 +50,7 @@ struct OutputWriter::Impl {
   }
 
   std::size_t bodies = 0;
+  std::chrono::steady_clock::time_point last_xdmf = std::chrono::steady_clock::now();
   void write_xdmf() { write_xdmf_file(path, header.dimension, frames, bodies); }
 };
 
@@ -170,9 +172,14 @@ void OutputWriter::write_frame(long step, double time, const State& state, long 
     throw RunError("cannot link frame " + name + " in " + m.path);
   m.flush();
   m.frames.push_back(XdmfFrame{step, time, nc});
-  // The viewer description is rewritten at frames 1, 2, 4, 8, … and every 64 frames, and at close.
+  // The viewer description lists every frame, so rewriting it costs O(frames): it is
+  // rewritten when the frame count doubles or 30 s after the last rewrite, and at close.
   const std::size_t n = m.frames.size();
-  if ((n & (n - 1)) == 0 || n % 64 == 0) m.write_xdmf();
+  const auto now = std::chrono::steady_clock::now();
+  if ((n & (n - 1)) == 0 || now - m.last_xdmf > std::chrono::seconds(30)) {
+    m.write_xdmf();
+    m.last_xdmf = now;
+  }
 }
 
 void OutputWriter::close() {

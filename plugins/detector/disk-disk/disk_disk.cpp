@@ -20,7 +20,7 @@ class RoundRound : public Detector {
     }
     const double d = std::sqrt(d2);
     const double gap = d - r1 - r2;
-    if (gap >= alert) return;
+    if (gap > alert) return;
     if (d > 0) for (int k = 0; k < dim; ++k) n[k] /= d;
     else n[dim - 1] = 1;  // coincident centres: any direction, a fixed one
     ContactPoint c;

@@ -22,7 +22,7 @@ class DiskSegment : public Detector {
     double nx = a.position[0] - px, ny = a.position[1] - py;
     const double d = std::hypot(nx, ny);
     const double gap = d - R - r;
-    if (gap >= alert) return;
+    if (gap > alert) return;
     if (d > 0) {
       nx /= d;
       ny /= d;

@@ -22,7 +22,7 @@ class SpherePlane : public Detector {
     double s = 0;
     for (int k = 0; k < 3; ++k) s += (a.position[k] - b.position[k]) * n[k];
     const double gap = s - R;
-    if (gap >= alert) return;
+    if (gap > alert) return;
     ContactPoint c;
     for (int k = 0; k < 3; ++k) {
       c.normal[k] = n[k];

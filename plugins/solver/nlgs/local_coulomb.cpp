@@ -60,7 +60,44 @@ void solve_local(int d, const double* A, const double* b, double mu, double* r) 
       }
     }
   }
-  // 3D sliding (and 2D fallback): r ← P_K(r − ρ ∘ (A r + b + μ‖u_T‖ e_n)), ρ_k = 1/A_kk.
+  if (d == 3) {
+    // Sliding along a unit direction e of the tangent plane: r = r_n (1, −μ e), u_n = 0,
+    // and e must be the direction of u_T. Fixed point on e from the direction of b_T
+    // (exact at once when A_TT is isotropic and A_Tn = 0, as for round shapes).
+    double ex = b[1], ey = b[2];
+    double len = std::hypot(ex, ey);
+    if (len == 0) {
+      ex = -r[1];
+      ey = -r[2];
+      len = std::hypot(ex, ey);
+    }
+    if (len > 0) {
+      ex /= len;
+      ey /= len;
+      for (int it = 0; it < 50; ++it) {
+        const double den = A[0] - mu * (A[1] * ex + A[2] * ey);
+        if (!(den > 0)) break;
+        const double rn = -b[0] / den;
+        const double rt1 = -mu * rn * ex, rt2 = -mu * rn * ey;
+        const double u1 = A[3] * rn + A[4] * rt1 + A[5] * rt2 + b[1];
+        const double u2 = A[6] * rn + A[7] * rt1 + A[8] * rt2 + b[2];
+        const double ul = std::hypot(u1, u2);
+        if (rn < 0 || ul == 0) break;
+        const double nx = u1 / ul, ny = u2 / ul;
+        const bool settled = std::fabs(nx - ex) + std::fabs(ny - ey) < 1e-15;
+        ex = nx;
+        ey = ny;
+        if (settled) {
+          const double den2 = A[0] - mu * (A[1] * ex + A[2] * ey);
+          r[0] = -b[0] / den2;
+          r[1] = -mu * r[0] * ex;
+          r[2] = -mu * r[0] * ey;
+          return;
+        }
+      }
+    }
+  }
+  // Fallback: r ← P_K(r − ρ ∘ (A r + b + μ‖u_T‖ e_n)), ρ_k = 1/A_kk.
   double rho[3];
   for (int k = 0; k < d; ++k) rho[k] = A[k * d + k] > 0 ? 1 / A[k * d + k] : 1.0;
   for (int it = 0; it < 200; ++it) {

@@ -1,0 +1,78 @@
+// A ball bouncing on a floor with Newton restitution e: apex heights e^(2k) h₀, then
+// rest: no sinking, no energy gain. A fast sphere does not pass through a plane.
+#include <cmath>
+
+#include "run_scene.hpp"
+
+using namespace moreau_test;
+
+namespace {
+std::string bounce_scene(double e, double h, double duration) {
+  char buf[1600];
+  std::snprintf(buf, sizeof buf, R"({
+  "format": "moreau-scene/1", "dimension": 3,
+  "time": {"step": %g, "duration": %g},
+  "gravity": [0, 0, -9.81],
+  "materials": {"steel": {"density": 7800}},
+  "laws": {"bouncy": {"type": "coulomb", "friction": 0.3, "restitution": %g}},
+  "bodies": [
+    {"name": "floor", "fixed": true, "position": [0, 0, 0], "contactors": [{"shape": "plane", "group": "floor"}]},
+    {"name": "ball", "material": "steel", "position": [0, 0, 1.05], "contactors": [{"shape": "sphere", "radius": 0.05, "group": "ball"}]}
+  ],
+  "interactions": [{"groups": ["ball", "floor"], "law": "bouncy"}],
+  "solver": {"type": "nlgs", "tolerance": 1e-10, "max_iterations": 100},
+  "output": {"every": 4}
+})", h, duration, e);
+  return buf;
+}
+}  // namespace
+
+TEST(Bounce, ApexHeightsFollowRestitutionAndTheBallComesToRest) {
+  const double e = 0.8, h = 5e-4, R = 0.05, h0 = 1.0;
+  SceneRun run = run_scene("bounce", bounce_scene(e, h, 6.0));
+  std::vector<double> z, vz;
+  for (const auto& f : run.frames) {
+    z.push_back(run.at(f, "position")[5]);
+    vz.push_back(run.at(f, "velocity")[5]);
+  }
+  std::vector<double> apex;
+  // Apexes from frames 4 steps apart (2 ms): sampling error ≤ g (2 ms)² / 8 = 5e-6 m.
+  for (std::size_t i = 1; i + 1 < z.size(); ++i)
+    if (vz[i - 1] > 0 && vz[i] <= 0) apex.push_back(std::max(z[i - 1], z[i]) - R);
+  ASSERT_GE(apex.size(), 5u);
+  // The impact is resolved within one step: the ball may rebound from up to h·v above the
+  // floor (v ≤ √(2 g h₀) = 4.4 m/s), so each apex is off by at most ~2 h v relative to h₀.
+  const double tol = 2 * h * std::sqrt(2 * 9.81 * h0) / h0 + 1e-3;
+  for (std::size_t k = 0; k < 5; ++k) {
+    const double expected = std::pow(e, 2.0 * (k + 1)) * h0;
+    std::printf("apex %zu: %.5f m, e^(2k) h0 = %.5f m, relative error %.2e\n", k + 1, apex[k], expected,
+                std::fabs(apex[k] - expected) / h0);
+    EXPECT_NEAR(apex[k], expected, tol * h0) << "apex " << k + 1;
+    if (k > 0) EXPECT_LT(apex[k], apex[k - 1]) << "no energy gain";
+  }
+  // After the accumulation of impacts (t∞ = √(2h₀/g)(1+e)/(1−e) = 4.07 s) it rests on the floor.
+  double zmin = 1e9;
+  for (double x : z) zmin = std::min(zmin, x);
+  EXPECT_GT(zmin, R - 1e-6) << "the ball sank into the floor";
+  EXPECT_NEAR(z.back(), R, 1e-6);
+  EXPECT_LT(std::fabs(vz.back()), 1e-6);
+}
+
+TEST(Bounce, FastSphereDoesNotTunnelThroughAPlane) {
+  SceneRun run = run_scene("tunnel", R"({
+  "format": "moreau-scene/1", "dimension": 3,
+  "time": {"step": 0.001, "duration": 0.05},
+  "laws": {"hard": {"type": "coulomb"}},
+  "bodies": [
+    {"name": "wall", "fixed": true, "position": [0, 0, 0], "contactors": [{"shape": "plane", "group": "wall"}]},
+    {"name": "bullet", "position": [0, 0, 0.5371], "velocity": [0, 0, -50], "mass": 0.01, "inertia": [1e-6, 1e-6, 1e-6],
+     "contactors": [{"shape": "sphere", "radius": 0.01, "group": "bullet"}]}
+  ],
+  "interactions": [{"groups": ["bullet", "wall"], "law": "hard"}],
+  "output": {"every": 1}
+})");
+  // 50 m/s with h = 1e-3 is 5 cm per step, five radii: without predictive contacts it
+  // would jump through in one step.
+  for (const auto& f : run.frames) EXPECT_GE(run.at(f, "position")[5], 0.01 - 1e-9) << "frame " << f;
+  EXPECT_NEAR(run.at(run.frames.back(), "velocity")[5], 0.0, 1e-9);
+}
