@@ -69,7 +69,7 @@ def spheres_in_box_3d(n=6, layers=8, radius=0.01, seed=2):
     return {
         "format": "moreau-scene/1",
         "dimension": 3,
-        "time": {"step": 5e-4, "duration": 0.6, "theta": 0.5},
+        "time": {"step": 5e-4, "duration": 0.4, "theta": 0.5},
         "gravity": [0, 0, -9.81],
         "materials": {"grain": {"density": 2600}},
         "laws": {"grain_grain": {"type": "coulomb", "friction": 0.3},
@@ -78,12 +78,15 @@ def spheres_in_box_3d(n=6, layers=8, radius=0.01, seed=2):
         "interactions": [{"groups": ["grain", "grain"], "law": "grain_grain"},
                          {"groups": ["grain", "wall"], "law": "grain_wall"}],
         "detection": {"broadphase": "grid", "alert": 0.002},
-        "solver": {"type": "nlgs", "tolerance": 1e-5, "max_iterations": 300},
+        "solver": {"type": "nlgs", "tolerance": 1e-4, "max_iterations": 200},
         "output": {"file": "spheres_in_box_3d.h5", "every": 40},
     }
 
 
 if __name__ == "__main__":
-    for name, scene in [("disks_in_box_2d.json", disks_in_box_2d()), ("spheres_in_box_3d.json", spheres_in_box_3d())]:
+    default = disks_in_box_2d()
+    default["output"]["file"] = "default.h5"
+    for name, scene in [("disks_in_box_2d.json", disks_in_box_2d()), ("spheres_in_box_3d.json", spheres_in_box_3d()),
+                        ("default.json", default)]:
         (CONFIGS / name).write_text(json.dumps(scene, indent=1) + "\n")
         print("wrote", CONFIGS / name)

@@ -23,13 +23,15 @@ class Nlgs : public Solver {
     s.number("relaxation", "relaxation factor omega").gt(0).lt(2).fallback(1.0);
     s.string("ordering", "contact order in a sweep").one_of({"given", "reverse", "shuffle"}).fallback("given");
     s.integer("seed", "seed of the shuffled order").min(0).fallback(1);
+    s.integer("check_every", "sweeps between two evaluations of the error (each costs about one sweep)").min(1).fallback(5);
     return s;
   }
   static constexpr const char* doc = "non-linear Gauss-Seidel with exact one-contact Coulomb solves";
 
   Nlgs(const Params& p, const BuildContext&)
       : tol_(p.number("tolerance")), max_it_(p.integer("max_iterations")), omega_(p.number("relaxation")),
-        ordering_(p.string("ordering")), seed_(static_cast<unsigned>(p.integer("seed"))) {}
+        ordering_(p.string("ordering")), seed_(static_cast<unsigned>(p.integer("seed"))),
+        check_every_(p.integer("check_every")) {}
 
   SolverReport solve(const LocalProblem& P, Eigen::VectorXd& r, Eigen::VectorXd& u) override {
     const int d = P.dim;
@@ -66,8 +68,9 @@ class Nlgs : public Solver {
         nlgs::solve_local(d, A, b, P.mu[a], rn);
         for (int i = 0; i < d; ++i) r[a * d + i] = omega_ * rn[i] + (1 - omega_) * old[i];
       }
-      u = P.W * r + P.q;
       rep.iterations = it;
+      if (it != 1 && it % check_every_ != 0 && it != max_it_) continue;
+      u = P.W * r + P.q;
       rep.error = natural_map_error(P, r, u);
       if (rep.error <= tol_) {
         rep.converged = true;
@@ -83,6 +86,7 @@ class Nlgs : public Solver {
   double omega_;
   std::string ordering_;
   unsigned seed_;
+  long check_every_;
   std::vector<double> blocks_;
   std::vector<Eigen::Index> order_;
 };
