@@ -12,7 +12,7 @@ namespace moreau::kernel {
 
 struct FclibSolveArgs {
   std::string problem;
-  std::string solver = "auto";
+  std::string solver = "nlgs";  // the default until the automatic solver exists
   std::optional<double> tolerance;
   std::optional<long> max_iterations;
   std::optional<std::string> solution;

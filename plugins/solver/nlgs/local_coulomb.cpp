@@ -26,6 +26,61 @@ bool solve_small(int d, const double* A, const double* b, double* x) {
   return true;
 }
 
+/// 3D sliding for any block: with e(φ) = (cos φ, sin φ) the sliding direction,
+/// r = r_n (1, −μ e), r_n = −b_n / (A_nn − μ A_nT·e), and u_T(φ) = r_n (A_Tn − μ A_TT e) + b_T
+/// must be parallel to e: f(φ) = u_T × e = 0 with u_T·e > 0 and r_n ≥ 0. Roots are
+/// bracketed on 64 angles and refined by bisection to rounding.
+bool slide_by_angle(const double* A, const double* b, double mu, double* r) {
+  struct Eval {
+    double f, along, rn;
+    bool valid;
+  };
+  auto eval = [&](double phi) {
+    const double c = std::cos(phi), s = std::sin(phi);
+    const double den = A[0] - mu * (A[1] * c + A[2] * s);
+    Eval e{0, 0, 0, den > 0};
+    if (!e.valid) return e;
+    e.rn = -b[0] / den;
+    const double u1 = e.rn * (A[3] - mu * (A[4] * c + A[5] * s)) + b[1];
+    const double u2 = e.rn * (A[6] - mu * (A[7] * c + A[8] * s)) + b[2];
+    e.f = u1 * s - u2 * c;
+    e.along = u1 * c + u2 * s;
+    e.valid = e.rn >= 0;
+    return e;
+  };
+  constexpr int n = 64;
+  const double step = 2 * M_PI / n;
+  Eval prev = eval(0);
+  for (int k = 1; k <= n; ++k) {
+    double lo = (k - 1) * step, hi = k * step;
+    Eval cur = eval(hi);
+    if (prev.valid && cur.valid && (prev.f == 0 || (prev.f < 0) != (cur.f < 0))) {
+      Eval flo = prev;
+      for (int it = 0; it < 60 && hi - lo > 1e-16; ++it) {
+        const double mid = 0.5 * (lo + hi);
+        Eval fm = eval(mid);
+        if (!fm.valid) break;
+        if ((fm.f < 0) == (flo.f < 0)) {
+          lo = mid;
+          flo = fm;
+        } else {
+          hi = mid;
+        }
+      }
+      const double phi = 0.5 * (lo + hi);
+      Eval e = eval(phi);
+      if (e.valid && e.along > 0) {
+        r[0] = e.rn;
+        r[1] = -mu * e.rn * std::cos(phi);
+        r[2] = -mu * e.rn * std::sin(phi);
+        return true;
+      }
+    }
+    prev = cur;
+  }
+  return false;
+}
+
 }  // namespace
 
 void solve_local(int d, const double* A, const double* b, double mu, double* r) {
@@ -97,6 +152,7 @@ void solve_local(int d, const double* A, const double* b, double mu, double* r) 
       }
     }
   }
+  if (d == 3 && slide_by_angle(A, b, mu, r)) return;
   // Fallback: r ← P_K(r − ρ ∘ (A r + b + μ‖u_T‖ e_n)), ρ_k = 1/A_kk.
   double rho[3];
   for (int k = 0; k < d; ++k) rho[k] = A[k * d + k] > 0 ? 1 / A[k * d + k] : 1.0;

@@ -1,0 +1,37 @@
+#pragma once
+// FCLib frictional-contact problems (DESIGN §3.5): local (W, q, μ) or global
+// (M, H, f, w, μ with M v = H r + f, u = Hᵀ v + w).
+#include <Eigen/SparseCore>
+#include <moreau/contact_problem.hpp>
+#include <optional>
+#include <string>
+
+namespace moreau::fclib {
+
+struct GlobalProblem {
+  int dim = 3;
+  Eigen::SparseMatrix<double> M;  ///< n_dof × n_dof
+  Eigen::SparseMatrix<double> H;  ///< n_dof × dim·nc
+  Eigen::VectorXd f, w, mu;
+};
+
+struct Problem {
+  bool global = false;
+  LocalProblem local;    ///< the problem itself, or the global one reduced
+  GlobalProblem global_problem;
+  std::optional<Eigen::VectorXd> guess_r;  ///< /guesses/1/r when present (never /solution)
+};
+
+/// Reads a problem. Faults: InputError with the file and the HDF5 path of the fault.
+Problem read(const std::string& path);
+
+/// W = Hᵀ M⁻¹ H, q = w + Hᵀ M⁻¹ f (M diagonal: directly; otherwise a sparse Cholesky).
+LocalProblem reduce(const GlobalProblem& g, const std::string& file);
+/// v = M⁻¹ (H r + f).
+Eigen::VectorXd global_velocity(const GlobalProblem& g, const Eigen::VectorXd& r);
+
+/// Writes /solution/r, /solution/u (and /solution/v) to `path`, through a temporary file.
+void write_solution(const std::string& path, const Eigen::VectorXd& r, const Eigen::VectorXd& u,
+                    const Eigen::VectorXd* v);
+
+}  // namespace moreau::fclib
