@@ -25,6 +25,8 @@ class Id {
     id_ = -1;
   }
   hid_t get() const { return id_; }
+  /// Gives up ownership without closing (the caller closes and checks the result).
+  void release() { id_ = -1; }
   explicit operator bool() const { return id_ >= 0; }
 
  private:

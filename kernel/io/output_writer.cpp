@@ -1,7 +1,6 @@
 #include "output_writer.hpp"
 
 #include <chrono>
-#include <cmath>
 #include <cstdio>
 #include <filesystem>
 #include <moreau/error.hpp>
@@ -12,6 +11,7 @@
 namespace moreau::io {
 
 namespace fs = std::filesystem;
+using Clock = std::chrono::steady_clock;
 
 std::string frame_name(long step) {
   char buf[32];
@@ -19,92 +19,169 @@ std::string frame_name(long step) {
   return buf;
 }
 
+std::string frames_folder(const std::string& h5_path) { return h5_path + ".frames"; }
+
+namespace {
+
+h5::Id create_file(const std::string& path) {
+  h5::Id fapl = h5::plist(H5Pcreate(H5P_FILE_ACCESS));
+  // 1.8 format: dense attribute storage, so a large scene fits in the `scene` attribute.
+  H5Pset_libver_bounds(fapl.get(), H5F_LIBVER_V18, H5F_LIBVER_V18);
+  return h5::file(H5Fcreate(path.c_str(), H5F_ACC_TRUNC, H5P_DEFAULT, fapl.get()));
+}
+
+/// Closes a file we wrote, checking that HDF5 could write everything out.
+void finish(h5::Id& file, const std::string& path) {
+  const hid_t id = file.get();
+  file.release();
+  if (H5Fclose(id) < 0) throw RunError("cannot finish writing " + path);
+}
+
+/// Renames a finished temporary file into place (atomic on POSIX file systems).
+void publish_file(const std::string& from, const std::string& to) {
+  std::error_code ec;
+  fs::rename(from, to, ec);
+  if (ec) {
+    fs::remove(from, ec);
+    throw RunError("cannot rename " + from + " to " + to + ": " + ec.message());
+  }
+}
+
+/// A per-body dataset of /bodies, kept to rewrite the header.
+struct BodyColumn {
+  std::string name;
+  bool as_int8 = false;
+  std::vector<double> values;
+  hsize_t components = 1;
+};
+
+}  // namespace
+
 struct OutputWriter::Impl {
   std::string path;
+  std::string folder;  // one file per frame while the run goes on
   OutputHeader header;
-  h5::Id file;
-  std::vector<XdmfFrame> frames;  // for the viewer description
-  std::vector<std::string> frame_fields;
-
-  void configure_cache() {
-    // A fixed 16 MiB metadata cache that keeps no minimum of clean space: between two
-    // flushes a frame dirties far less than that, so dirty metadata reaches the disk only
-    // at the explicit flushes (see the header); clean entries are evicted as needed, so
-    // memory stays bounded over long runs.
-    H5AC_cache_config_t cfg;
-    cfg.version = H5AC__CURR_CACHE_CONFIG_VERSION;
-    if (H5Fget_mdc_config(file.get(), &cfg) < 0) return;
-    cfg.incr_mode = H5C_incr__off;
-    cfg.flash_incr_mode = H5C_flash_incr__off;
-    cfg.decr_mode = H5C_decr__off;
-    cfg.set_initial_size = true;
-    cfg.initial_size = 16 * 1024 * 1024;
-    cfg.max_size = 16 * 1024 * 1024;
-    cfg.min_size = 16 * 1024 * 1024;
-    cfg.min_clean_fraction = 0.0;
-    H5Fset_mdc_config(file.get(), &cfg);
-  }
-
-  void flush() {
-    if (H5Fflush(file.get(), H5F_SCOPE_GLOBAL) < 0) throw RunError("cannot flush the output file " + path);
-  }
-
+  std::vector<std::string> names;
+  std::vector<BodyColumn> columns;
   std::size_t bodies = 0;
-  std::chrono::steady_clock::time_point last_xdmf = std::chrono::steady_clock::now();
+  std::vector<XdmfFrame> frames;  // every frame written, in step order
+  bool open = true;
+
+  Clock::time_point last_list{};
+  double list_seconds = 0;  // the cost of the last rewrite of the list
+  std::size_t listed = 0;   // frames in the published list
+  Clock::time_point last_xdmf = Clock::now();
+
+  std::string frame_file(long step) const { return folder + "/" + frame_name(step) + ".h5"; }
+  /// Relative to OUT.h5's folder, so the pair can be moved together.
+  std::string frame_link(long step) const {
+    return fs::path(folder).filename().string() + "/" + frame_name(step) + ".h5";
+  }
+
+  void keep_header(const State& state) {
+    names = state.names();
+    bodies = state.bodies();
+    for (const auto& f : state.fields()) {
+      if (f.spec().output != FieldOutput::bodies) continue;
+      BodyColumn c{f.name(), f.spec().as_int8, {}, static_cast<hsize_t>(f.components())};
+      c.values.assign(f.data(Depth::begin), f.data(Depth::begin) + f.bodies() * f.components());
+      columns.push_back(std::move(c));
+    }
+  }
+
+  void write_header(hid_t root) const {
+    h5::attribute_string(root, "format", "moreau-output/1");
+    h5::attribute_long(root, "dimension", header.dimension);
+    h5::attribute_double(root, "time_step", header.time_step);
+    h5::attribute_string(root, "scene", header.scene_text);
+    h5::Id g = h5::group(H5Gcreate2(root, "bodies", H5P_DEFAULT, H5P_DEFAULT, H5P_DEFAULT));
+    h5::write_strings(g.get(), "name", names);
+    for (const auto& c : columns) {
+      if (c.as_int8) {
+        std::vector<signed char> v(bodies);
+        for (std::size_t i = 0; i < bodies; ++i) v[i] = static_cast<signed char>(c.values[i * c.components]);
+        h5::write_int8(g.get(), c.name, v);
+      } else {
+        h5::write_doubles(g.get(), c.name, c.values.data(), bodies, c.components == 1 ? 0 : c.components);
+      }
+    }
+  }
+
+  /// Writes OUT.h5 anew, with the frames linked (`gather` false) or copied in, and
+  /// renames it into place.
+  void publish(bool gather) {
+    const auto start = Clock::now();
+    const std::string part = path + ".part";
+    h5::Id f = create_file(part);
+    if (!f) throw RunError("cannot write " + part);
+    write_header(f.get());
+    h5::Id g = h5::group(H5Gcreate2(f.get(), "frames", H5P_DEFAULT, H5P_DEFAULT, H5P_DEFAULT));
+    for (const auto& fr : frames) {
+      const std::string name = frame_name(fr.step);
+      herr_t rc;
+      if (gather) {
+        h5::Id src = h5::file(H5Fopen(frame_file(fr.step).c_str(), H5F_ACC_RDONLY, H5P_DEFAULT));
+        rc = src ? H5Ocopy(src.get(), "frame", g.get(), name.c_str(), H5P_DEFAULT, H5P_DEFAULT) : -1;
+      } else {
+        rc = H5Lcreate_external(frame_link(fr.step).c_str(), "/frame", g.get(), name.c_str(), H5P_DEFAULT, H5P_DEFAULT);
+      }
+      if (rc < 0) throw RunError("cannot put frame " + name + " into " + part);
+    }
+    g.reset();
+    finish(f, part);
+    publish_file(part, path);
+    listed = frames.size();
+    last_list = Clock::now();
+    list_seconds = std::chrono::duration<double>(last_list - start).count();
+  }
+
   void write_xdmf() { write_xdmf_file(path, header.dimension, frames, bodies); }
 };
 
-static h5::Id access_plist() {
-  h5::Id fapl = h5::plist(H5Pcreate(H5P_FILE_ACCESS));
-  // 1.8 format: dense attribute storage (a large scene fits in the `scene` attribute), and
-  // no 1.10 superblock status flags.
-  H5Pset_libver_bounds(fapl.get(), H5F_LIBVER_V18, H5F_LIBVER_V18);
-  return fapl;
+OutputWriter::OutputWriter(std::unique_ptr<Impl> impl) : impl_(std::move(impl)) {}
+
+OutputWriter::~OutputWriter() {
+  try {
+    close();
+  } catch (const std::exception&) {
+    // Unwinding from another error: OUT.h5 and its folder still hold every listed frame.
+  }
 }
 
-OutputWriter::OutputWriter(std::unique_ptr<Impl> impl) : impl_(std::move(impl)) {}
-OutputWriter::~OutputWriter() = default;
-
 const std::string& OutputWriter::path() const { return impl_->path; }
+
+namespace {
+
+/// Starts the frames folder, naming the reason when the output path cannot be written.
+void start_folder(const std::string& path, const std::string& folder) {
+  std::error_code ec;
+  fs::remove(path + ".part", ec);
+  fs::remove_all(folder, ec);  // left by an earlier killed run
+  if (fs::create_directory(folder, ec) && !ec) return;
+  const fs::path parent = fs::absolute(path, ec).parent_path();
+  const std::string why = !fs::is_directory(parent, ec) ? "its folder " + parent.string() + " does not exist"
+                                                         : "the folder is not writable";
+  throw InputError("", "cannot create the output file: " + why, path);
+}
+
+}  // namespace
 
 std::unique_ptr<OutputWriter> OutputWriter::create(const std::string& path, const OutputHeader& header,
                                                    const State& state) {
   h5::quiet();
   auto impl = std::make_unique<Impl>();
   impl->path = path;
+  impl->folder = frames_folder(path);
   impl->header = header;
-  impl->bodies = state.bodies();
-  h5::Id fapl = access_plist();
-  impl->file = h5::file(H5Fcreate(path.c_str(), H5F_ACC_TRUNC, H5P_DEFAULT, fapl.get()));
-  if (!impl->file) {
+  impl->keep_header(state);
+  start_folder(path, impl->folder);
+  try {
+    impl->publish(false);
+  } catch (const RunError& e) {
     std::error_code ec;
-    const fs::path parent = fs::absolute(path, ec).parent_path();
-    std::string why = !fs::is_directory(parent, ec) ? "its folder " + parent.string() + " does not exist"
-                                                     : "the folder is not writable or the file is in use";
-    throw InputError("", "cannot create the output file: " + why, path);
+    fs::remove_all(impl->folder, ec);
+    throw InputError("", std::string("cannot create the output file: ") + e.what(), path);
   }
-  impl->configure_cache();
-  hid_t root = impl->file.get();
-  h5::attribute_string(root, "format", "moreau-output/1");
-  h5::attribute_long(root, "dimension", header.dimension);
-  h5::attribute_double(root, "time_step", header.time_step);
-  h5::attribute_string(root, "scene", header.scene_text);
-  {
-    h5::Id bodies = h5::group(H5Gcreate2(root, "bodies", H5P_DEFAULT, H5P_DEFAULT, H5P_DEFAULT));
-    h5::write_strings(bodies.get(), "name", state.names());
-    for (const auto& f : state.fields()) {
-      if (f.spec().output != FieldOutput::bodies) continue;
-      if (f.spec().as_int8) {
-        std::vector<signed char> v(f.bodies());
-        for (std::size_t i = 0; i < v.size(); ++i) v[i] = static_cast<signed char>(f.data(Depth::begin)[i * f.components()]);
-        h5::write_int8(bodies.get(), f.name(), v);
-      } else {
-        h5::write_doubles(bodies.get(), f.name(), f.data(Depth::begin), f.bodies(), f.components() == 1 ? 0 : f.components());
-      }
-    }
-  }
-  h5::Id frames = h5::group(H5Gcreate2(root, "frames", H5P_DEFAULT, H5P_DEFAULT, H5P_DEFAULT));
-  impl->flush();
   return std::unique_ptr<OutputWriter>(new OutputWriter(std::move(impl)));
 }
 
@@ -113,22 +190,50 @@ std::unique_ptr<OutputWriter> OutputWriter::append(const std::string& path, cons
   h5::quiet();
   auto impl = std::make_unique<Impl>();
   impl->path = path;
+  impl->folder = frames_folder(path);
   impl->header = header;
-  impl->bodies = state.bodies();
-  h5::Id fapl = access_plist();
-  impl->file = h5::file(H5Fopen(path.c_str(), H5F_ACC_RDWR, fapl.get()));
-  if (!impl->file) throw InputError("", "cannot open the output file for writing", path);
-  impl->configure_cache();
-  const auto names = h5::read_strings(impl->file.get(), "/bodies/name", path);
-  if (names != state.names())
-    throw InputError("/bodies/name", "the output file holds other bodies than the scene", path);
-  h5::Id frames = h5::group(H5Gopen2(impl->file.get(), "/frames", H5P_DEFAULT));
-  for (const auto& name : h5::children(frames.get())) {
-    const long step = std::stol(name);
-    if (step > after_step) H5Ldelete(frames.get(), name.c_str(), H5P_DEFAULT);
-    else impl->frames.push_back(XdmfFrame{step, step * header.time_step, 0});
+  impl->keep_header(state);
+  {
+    h5::Id src = h5::file(H5Fopen(path.c_str(), H5F_ACC_RDONLY, H5P_DEFAULT));
+    if (!src) throw InputError("", "cannot open the output file to continue it", path);
+    if (h5::read_strings(src.get(), "/bodies/name", path) != state.names())
+      throw InputError("/bodies/name", "the output file holds other bodies than the scene", path);
+    std::error_code ec;
+    fs::remove(path + ".part", ec);
+    fs::create_directory(impl->folder, ec);
+    h5::Id frames = h5::group(H5Gopen2(src.get(), "/frames", H5P_DEFAULT));
+    if (!frames) throw InputError("/frames", "missing group", path);
+    // A gathered file's frames are copied out to the folder; a killed run's are there already.
+    for (const auto& name : h5::children(frames.get())) {
+      const long step = std::stol(name);
+      H5L_info_t info;
+      const bool linked = H5Lget_info(frames.get(), name.c_str(), &info, H5P_DEFAULT) >= 0 &&
+                          info.type == H5L_TYPE_EXTERNAL;
+      if (step > after_step) {
+        if (linked) fs::remove(impl->frame_file(step), ec);
+        continue;
+      }
+      h5::Id fg = h5::group(H5Gopen2(frames.get(), name.c_str(), H5P_DEFAULT));
+      if (!fg) throw InputError("/frames/" + name, "cannot open the frame", path);
+      const double time = h5::read_attribute_double(fg.get(), "time", path, "/frames/" + name);
+      std::size_t nc = 0;
+      if (h5::exists(fg.get(), "contacts/gap")) {
+        std::vector<hsize_t> shape;
+        nc = h5::read_doubles(fg.get(), "contacts/gap", &shape, path).size();
+      }
+      fg.reset();
+      if (!linked) {
+        const std::string part = impl->frame_file(step) + ".part";
+        h5::Id dst = create_file(part);
+        if (!dst || H5Ocopy(frames.get(), name.c_str(), dst.get(), "frame", H5P_DEFAULT, H5P_DEFAULT) < 0)
+          throw RunError("cannot copy frame " + name + " of " + path + " to " + part);
+        finish(dst, part);
+        publish_file(part, impl->frame_file(step));
+      }
+      impl->frames.push_back(XdmfFrame{step, time, nc});
+    }
   }
-  impl->flush();
+  impl->publish(false);
   return std::unique_ptr<OutputWriter>(new OutputWriter(std::move(impl)));
 }
 
@@ -136,46 +241,45 @@ void OutputWriter::write_frame(long step, double time, const State& state, long 
                                const ContactFrame* contacts) {
   Impl& m = *impl_;
   const std::string name = frame_name(step);
-  hid_t root = m.file.get();
-  // Build the frame as an anonymous group, flush, then link it: it appears complete or not at all.
-  h5::Id g = h5::group(H5Gcreate_anon(root, H5P_DEFAULT, H5P_DEFAULT));
-  if (!g) throw RunError("cannot write frame " + name + " to " + m.path);
-  h5::attribute_double(g.get(), "time", time);
-  h5::attribute_long(g.get(), "step", step);
-  for (const auto& f : state.fields()) {
-    if (f.spec().output != FieldOutput::frame) continue;
-    h5::write_doubles(g.get(), f.name(), f.data(Depth::begin), f.bodies(), f.components() == 1 ? 0 : f.components());
-  }
-  const int d = m.header.dimension;
-  std::size_t nc = 0;
+  const std::string file = m.frame_file(step);
+  const std::string part = file + ".part";
+  h5::Id f = create_file(part);
+  if (!f) throw RunError("cannot write frame " + name + " to " + part);
   {
+    h5::Id g = h5::group(H5Gcreate2(f.get(), "frame", H5P_DEFAULT, H5P_DEFAULT, H5P_DEFAULT));
+    h5::attribute_double(g.get(), "time", time);
+    h5::attribute_long(g.get(), "step", step);
+    for (const auto& fd : state.fields()) {
+      if (fd.spec().output != FieldOutput::frame) continue;
+      h5::write_doubles(g.get(), fd.name(), fd.data(Depth::begin), fd.bodies(),
+                        fd.components() == 1 ? 0 : fd.components());
+    }
     h5::Id solver = h5::group(H5Gcreate2(g.get(), "solver", H5P_DEFAULT, H5P_DEFAULT, H5P_DEFAULT));
     h5::attribute_long(solver.get(), "iterations", iterations);
     h5::attribute_double(solver.get(), "error", error);
+    if (contacts) {
+      const int d = m.header.dimension;
+      const std::size_t nc = contacts->size();
+      h5::Id c = h5::group(H5Gcreate2(g.get(), "contacts", H5P_DEFAULT, H5P_DEFAULT, H5P_DEFAULT));
+      h5::write_int32(c.get(), "bodies", contacts->bodies.data(), nc, 2);
+      h5::write_doubles(c.get(), "point", contacts->point.data(), nc, d);
+      h5::write_doubles(c.get(), "normal", contacts->normal.data(), nc, d);
+      h5::write_doubles(c.get(), "gap", contacts->gap.data(), nc, 0);
+      h5::write_doubles(c.get(), "impulse", contacts->impulse.data(), nc, d);
+      h5::write_doubles(c.get(), "force", contacts->force.data(), nc, d);
+      h5::write_int8(c.get(), "status", contacts->status);
+      h5::write_int32(c.get(), "key", contacts->keys.data(), nc, 3);
+    }
   }
-  if (contacts) {
-    nc = contacts->size();
-    h5::Id c = h5::group(H5Gcreate2(g.get(), "contacts", H5P_DEFAULT, H5P_DEFAULT, H5P_DEFAULT));
-    h5::write_int32(c.get(), "bodies", contacts->bodies.data(), nc, 2);
-    h5::write_doubles(c.get(), "point", contacts->point.data(), nc, d);
-    h5::write_doubles(c.get(), "normal", contacts->normal.data(), nc, d);
-    h5::write_doubles(c.get(), "gap", contacts->gap.data(), nc, 0);
-    h5::write_doubles(c.get(), "impulse", contacts->impulse.data(), nc, d);
-    h5::write_doubles(c.get(), "force", contacts->force.data(), nc, d);
-    h5::write_int8(c.get(), "status", contacts->status);
-    h5::write_int32(c.get(), "key", contacts->keys.data(), nc, 3);
-  }
-  m.flush();
-  if (H5Lexists(root, ("/frames/" + name).c_str(), H5P_DEFAULT) > 0)
-    H5Ldelete(root, ("/frames/" + name).c_str(), H5P_DEFAULT);
-  if (H5Olink(g.get(), root, ("/frames/" + name).c_str(), H5P_DEFAULT, H5P_DEFAULT) < 0)
-    throw RunError("cannot link frame " + name + " in " + m.path);
-  m.flush();
-  m.frames.push_back(XdmfFrame{step, time, nc});
-  // The viewer description lists every frame, so rewriting it costs O(frames): it is
-  // rewritten when the frame count doubles or 30 s after the last rewrite, and at close.
+  finish(f, part);
+  publish_file(part, file);
+  if (!m.frames.empty() && m.frames.back().step == step) m.frames.pop_back();  // rewritten (last frame)
+  m.frames.push_back(XdmfFrame{step, time, contacts ? contacts->size() : 0});
+  // The list costs O(frames) to rewrite: keep it under a tenth of the time between rewrites.
+  const auto now = Clock::now();
+  if (m.listed == 0 || std::chrono::duration<double>(now - m.last_list).count() >= 10 * m.list_seconds) m.publish(false);
+  // Same for the viewer description: when the frame count doubles or 30 s after the last.
   const std::size_t n = m.frames.size();
-  const auto now = std::chrono::steady_clock::now();
   if ((n & (n - 1)) == 0 || now - m.last_xdmf > std::chrono::seconds(30)) {
     m.write_xdmf();
     m.last_xdmf = now;
@@ -183,10 +287,13 @@ void OutputWriter::write_frame(long step, double time, const State& state, long 
 }
 
 void OutputWriter::close() {
-  if (!impl_->file) return;
-  impl_->flush();
-  impl_->write_xdmf();
-  impl_->file.reset();
+  Impl& m = *impl_;
+  if (!m.open) return;
+  m.open = false;
+  m.publish(true);
+  std::error_code ec;
+  fs::remove_all(m.folder, ec);
+  m.write_xdmf();
 }
 
 }  // namespace moreau::io

@@ -2,12 +2,20 @@
 // The HDF5 output file of a run (DESIGN §3.3, `format = "moreau-output/1"`), with the
 // ParaView description (XDMF) beside it.
 //
-// Crash safety: a frame becomes visible in one step. It is written, with every dataset,
-// into the file, then the file is flushed; only then is its name linked under /frames,
-// and the file flushed again. HDF5's metadata cache is set to keep metadata in memory
-// between flushes, so a process killed at any moment leaves on disk the file of the
-// last flush: every visible frame is complete. The file uses the 1.8 format (no
-// superblock status flags, so a killed run's file opens without h5clear).
+// Crash safety. HDF5 updates a file in place through many metadata blocks, so a process
+// killed during a write can leave a file that no longer opens. The writer therefore never
+// modifies a file that is visible under its final name:
+//  - while the run goes on, each frame is written to its own file in OUT.h5.frames/
+//    (under a temporary name, renamed once closed), and OUT.h5 is a small file holding the
+//    header and, under /frames, external links to the frame files; it is rewritten under a
+//    temporary name and renamed over the old one (rename is atomic), so a reader sees the
+//    old or the new list, never half of one;
+//  - when the run ends (or stops on an error), the frames are copied into one
+//    self-contained OUT.h5 (again renamed into place) and the folder is removed.
+// A killed run thus leaves OUT.h5 and OUT.h5.frames/: together they read as one file
+// (h5py, ParaView and `--restart` follow the links); every frame listed is complete.
+// The list of frames is rewritten at most as often as keeps its cost under a tenth of
+// the run time, so a kill loses at most the last few seconds of frames.
 //
 // Frames are written at stage `output`, after `end_step` swapped the time depths: the
 // step's final values are in Depth::begin.
@@ -43,9 +51,10 @@ class OutputWriter {
   /// A new file (replacing any file at `path`). Unwritable path: InputError naming it.
   static std::unique_ptr<OutputWriter> create(const std::string& path, const OutputHeader& header, const State& state);
   /// An existing output file of the same scene, to continue after frame `after_step`:
-  /// later frames are unlinked.
+  /// later frames are dropped.
   static std::unique_ptr<OutputWriter> append(const std::string& path, const OutputHeader& header, const State& state,
                                               long after_step);
+  /// Without close(), the frames written so far are still gathered into one file.
   ~OutputWriter();
 
   void write_frame(long step, double time, const State& state, long solver_iterations, double solver_error,
@@ -62,5 +71,8 @@ class OutputWriter {
 
 /// Frame names are the step number, zero-padded to 8 digits.
 std::string frame_name(long step);
+
+/// The folder holding one file per frame while a run writes OUT.h5: OUT.h5.frames.
+std::string frames_folder(const std::string& h5_path);
 
 }  // namespace moreau::io
