@@ -61,8 +61,11 @@ class Rigid : public Modelization {
       set_both(st.field(R::angular_velocity), b, fixed ? std::vector<double>(3, 0.0) : p.vector("angular_velocity"));
     }
 
-    if (shapes && (std::fabs(shapes->center[0]) > 1e-12 || std::fabs(shapes->center[1]) > 1e-12 ||
-                   std::fabs(shapes->center[2]) > 1e-12))
+    // A fixed body never moves, so where its centre of mass lies does not matter (floors,
+    // slopes). Tolerance relative to the body's size: centroids are computed, not given.
+    const double size = shapes ? std::pow(std::fabs(shapes->volume), 1.0 / d) : 0.0;
+    if (shapes && !fixed &&
+        std::hypot(shapes->center[0], shapes->center[1], shapes->center[2]) > 1e-9 * size)
       throw p.error("contactors", "the contactors' centre of mass is not at the body origin; place the body origin "
                                   "at the centre of mass (offset centres of mass are not supported yet)");
 

@@ -1,0 +1,20 @@
+// `disk-polygon`: closest point of the polygon to the disk centre
+#include <convex.hpp>
+#include <moreau/detector.hpp>
+
+namespace {
+using namespace moreau;
+
+class DiskPolygon : public Detector {
+ public:
+  static Schema schema() { return {}; }
+  static constexpr const char* doc = "closest point of the polygon to the disk centre";
+  DiskPolygon(const Params&, const BuildContext&) {}
+  void detect(int, const Shape& first, const Pose& a, const Shape& second, const Pose& b, double alert,
+              std::vector<ContactPoint>& out) const override {
+    geom::disk_polygon({a.position[0], a.position[1]}, first.geometry()[0], geom::polygon_at(second.geometry(), b), alert, out);
+  }
+};
+MOREAU_REGISTER(DiskPolygon, "disk-polygon")
+}  // namespace
+MOREAU_PLUGIN_LIBRARY("moreau_detector_disk-polygon")

@@ -1,0 +1,313 @@
+// Convex polyhedra: placement, mass properties, and contacts by separating axes (face
+// normals of both, cross products of edge pairs). A face axis gives a manifold: the
+// incident face of the other body clipped against the reference face's side planes
+// (Sutherland–Hodgman), reduced to 4 points; an edge pair gives one point.
+#include <algorithm>
+#include <limits>
+#include <stdexcept>
+
+#include "convex.hpp"
+
+namespace moreau::geom {
+
+namespace {
+constexpr double inf = std::numeric_limits<double>::infinity();
+}
+
+void Polyhedron::finish() {
+  normal.clear();
+  offset.clear();
+  edges.clear();
+  centre = {};
+  for (const V3& x : v) centre = centre + x;
+  centre = (1.0 / v.size()) * centre;
+  for (const auto& f : faces) {
+    V3 n{};  // Newell's normal: robust for any planar polygon
+    for (std::size_t i = 0; i < f.size(); ++i) n = n + cross(v[f[i]], v[f[(i + 1) % f.size()]]);
+    n = (1 / norm(n)) * n;
+    normal.push_back(n);
+    offset.push_back(dot(n, v[f[0]]));
+    for (std::size_t i = 0; i < f.size(); ++i) {
+      const int a = f[i], b = f[(i + 1) % f.size()];
+      if (a < b) edges.push_back({a, b});  // each edge once (its other face lists it b→a)
+    }
+  }
+}
+
+std::vector<double> box_geometry_as_convex(const std::vector<double>& s) {
+  const double x = s[0] / 2, y = s[1] / 2, z = s[2] / 2;
+  std::vector<double> g{8};
+  for (int i = 0; i < 8; ++i) {
+    g.push_back(i & 1 ? x : -x);
+    g.push_back(i & 2 ? y : -y);
+    g.push_back(i & 4 ? z : -z);
+  }
+  // Counter-clockwise seen from outside: -x, +x, -y, +y, -z, +z.
+  const int faces[6][4] = {{0, 4, 6, 2}, {1, 3, 7, 5}, {0, 1, 5, 4}, {2, 6, 7, 3}, {0, 2, 3, 1}, {4, 5, 7, 6}};
+  g.push_back(6);
+  for (const auto& f : faces) {
+    g.push_back(4);
+    for (int i : f) g.push_back(i);
+  }
+  return g;
+}
+
+Polyhedron polyhedron_at(const std::string& shape, const std::vector<double>& g0, const Pose& pose) {
+  const std::vector<double> boxg = shape == "box" ? box_geometry_as_convex(g0) : std::vector<double>{};
+  const std::vector<double>& g = shape == "box" ? boxg : g0;
+  Polyhedron p;
+  const int nv = static_cast<int>(g[0]);
+  const V3 x{pose.position[0], pose.position[1], pose.position[2]};
+  for (int i = 0; i < nv; ++i) p.v.push_back(x + rotate(pose.rotation, V3{g[1 + 3 * i], g[2 + 3 * i], g[3 + 3 * i]}));
+  std::size_t at = 1 + 3 * nv;
+  const int nf = static_cast<int>(g[at++]);
+  for (int f = 0; f < nf; ++f) {
+    const int k = static_cast<int>(g[at++]);
+    std::vector<int> face;
+    for (int i = 0; i < k; ++i) face.push_back(static_cast<int>(g[at++]));
+    p.faces.push_back(std::move(face));
+  }
+  p.finish();
+  return p;
+}
+
+MassProperties polyhedron_mass(const Polyhedron& p) {
+  // Sum over tetrahedra (origin, triangle of a face fan): volume, first moment and the
+  // covariance ∫x xᵀ (det(A) · A C A ᵀ with C the canonical tetrahedron's covariance).
+  double V = 0;
+  V3 first{};
+  double C[3][3] = {};
+  for (const auto& f : p.faces)
+    for (std::size_t i = 1; i + 1 < f.size(); ++i) {
+      const V3 a = p.v[f[0]], b = p.v[f[i]], c = p.v[f[i + 1]];
+      const double det = dot(a, cross(b, c));
+      V += det / 6;
+      first = first + (det / 24) * (a + b + c);
+      const double A[3][3] = {{a.x, b.x, c.x}, {a.y, b.y, c.y}, {a.z, b.z, c.z}};
+      for (int r = 0; r < 3; ++r)
+        for (int s = 0; s < 3; ++s) {
+          double sum = 0;  // (A C Aᵀ)_rs with C = (1/120)(1 + δ_ij)
+          for (int i = 0; i < 3; ++i)
+            for (int j = 0; j < 3; ++j) sum += A[r][i] * (i == j ? 2.0 : 1.0) * A[s][j];
+          C[r][s] += det * sum / 120;
+        }
+    }
+  MassProperties m;
+  m.volume = V;
+  const V3 c = (1 / V) * first;
+  m.center = {c.x, c.y, c.z};
+  const double cc[3] = {c.x, c.y, c.z};
+  for (int r = 0; r < 3; ++r)
+    for (int s = 0; s < 3; ++s) C[r][s] -= V * cc[r] * cc[s];  // about the centroid
+  const double tr = C[0][0] + C[1][1] + C[2][2];
+  for (int r = 0; r < 3; ++r)
+    for (int s = 0; s < 3; ++s) m.inertia[3 * r + s] = (r == s ? tr : 0) - C[r][s];
+  return m;
+}
+
+namespace {
+
+/// Largest separation of q from p's face planes (max over faces of min over q's vertices).
+double face_separation(const Polyhedron& p, const Polyhedron& q, int& best) {
+  double s_best = -inf;
+  for (std::size_t f = 0; f < p.faces.size(); ++f) {
+    double s = inf;
+    for (const V3& w : q.v) s = std::min(s, dot(p.normal[f], w) - p.offset[f]);
+    if (s > s_best) {
+      s_best = s;
+      best = static_cast<int>(f);
+    }
+  }
+  return s_best;
+}
+
+/// Closest points of segments [p0, p1] and [q0, q1].
+void closest_on_segments(V3 p0, V3 p1, V3 q0, V3 q1, V3& a, V3& b) {
+  const V3 d1 = p1 - p0, d2 = q1 - q0, r = p0 - q0;
+  const double A = dot(d1, d1), E = dot(d2, d2), F = dot(d2, r), C = dot(d1, r), B = dot(d1, d2);
+  const double den = A * E - B * B;
+  double s = den > 1e-300 ? std::clamp((B * F - C * E) / den, 0.0, 1.0) : 0.0;
+  double t = (B * s + F) / E;
+  if (t < 0) {
+    t = 0;
+    s = std::clamp(-C / A, 0.0, 1.0);
+  } else if (t > 1) {
+    t = 1;
+    s = std::clamp((B - C) / A, 0.0, 1.0);
+  }
+  a = p0 + s * d1;
+  b = q0 + t * d2;
+}
+
+}  // namespace
+
+void polyhedron_polyhedron(const Polyhedron& a, const Polyhedron& b, double alert, std::vector<ContactPoint>& out) {
+  int fa = 0, fb = 0;
+  const double sa = face_separation(a, b, fa);
+  if (sa > alert) return;
+  const double sb = face_separation(b, a, fb);
+  if (sb > alert) return;
+  // Edge pairs: axis e_a × e_b, oriented from b toward a.
+  double se = -inf;
+  int ea = -1, eb = -1;
+  V3 axis_best{};
+  const V3 towards_a = a.centre - b.centre;
+  for (std::size_t i = 0; i < a.edges.size(); ++i) {
+    const V3 da = a.v[a.edges[i][1]] - a.v[a.edges[i][0]];
+    for (std::size_t j = 0; j < b.edges.size(); ++j) {
+      const V3 db = b.v[b.edges[j][1]] - b.v[b.edges[j][0]];
+      V3 ax = cross(da, db);
+      const double l = norm(ax);
+      if (l <= 1e-6 * norm(da) * norm(db)) continue;  // parallel edges: covered by face axes
+      ax = (1 / l) * ax;
+      if (dot(ax, towards_a) < 0) ax = -ax;
+      double amin = inf, bmax = -inf;
+      for (const V3& x : a.v) amin = std::min(amin, dot(ax, x));
+      for (const V3& x : b.v) bmax = std::max(bmax, dot(ax, x));
+      const double s = amin - bmax;
+      if (s > se) {
+        se = s;
+        ea = static_cast<int>(i);
+        eb = static_cast<int>(j);
+        axis_best = ax;
+      }
+    }
+  }
+  if (se > alert) return;
+  double size = 0;
+  for (const V3& x : a.v) size = std::max(size, norm(x - a.centre));
+  // Faces are preferred unless an edge pair separates clearly better: face contacts give
+  // manifolds, and the bias keeps the choice stable from step to step.
+  const double face_best = std::max(sa, sb);
+  if (ea >= 0 && se > face_best + 1e-3 * size) {
+    V3 pa, pb;
+    closest_on_segments(a.v[a.edges[ea][0]], a.v[a.edges[ea][1]], b.v[b.edges[eb][0]], b.v[b.edges[eb][1]], pa, pb);
+    ContactPoint c;
+    const V3 mid = 0.5 * (pa + pb);
+    c.point[0] = mid.x, c.point[1] = mid.y, c.point[2] = mid.z;
+    c.normal[0] = axis_best.x, c.normal[1] = axis_best.y, c.normal[2] = axis_best.z;
+    c.gap = se;
+    c.feature = 1 << 15 | ((ea * 64 + eb) & 0x7fff);
+    out.push_back(c);
+    return;
+  }
+  const bool ref_is_b = sb >= sa - 1e-9 * (1 + std::fabs(sa));
+  const Polyhedron& ref = ref_is_b ? b : a;
+  const Polyhedron& inc = ref_is_b ? a : b;
+  const int rf = ref_is_b ? fb : fa;
+  const V3 n = ref.normal[rf];
+  int inc_face = 0;
+  double lowest = inf;
+  for (std::size_t f = 0; f < inc.faces.size(); ++f)
+    if (dot(inc.normal[f], n) < lowest) {
+      lowest = dot(inc.normal[f], n);
+      inc_face = static_cast<int>(f);
+    }
+  struct Pt {
+    V3 x;
+    int id;
+  };
+  std::vector<Pt> poly, next;
+  for (std::size_t i = 0; i < inc.faces[inc_face].size(); ++i) poly.push_back({inc.v[inc.faces[inc_face][i]], static_cast<int>(i)});
+  const auto& rface = ref.faces[rf];
+  for (std::size_t e = 0; e < rface.size() && !poly.empty(); ++e) {
+    const V3 r0 = ref.v[rface[e]], r1 = ref.v[rface[(e + 1) % rface.size()]];
+    const V3 side = cross(r1 - r0, n);  // outward across this edge of the reference face
+    next.clear();
+    for (std::size_t i = 0; i < poly.size(); ++i) {
+      const Pt& p = poly[i];
+      const Pt& q = poly[(i + 1) % poly.size()];
+      const double dp = dot(side, p.x - r0), dq = dot(side, q.x - r0);
+      if (dp <= 0) next.push_back(p);
+      if ((dp < 0 && dq > 0) || (dp > 0 && dq < 0)) {
+        const double f = dp / (dp - dq);
+        next.push_back({p.x + f * (q.x - p.x), 32 + static_cast<int>(e % 8) * 4 + (p.id & 3)});
+      }
+    }
+    poly.swap(next);
+  }
+  const std::size_t first = out.size();
+  for (const Pt& p : poly) {
+    const double s = dot(n, p.x) - ref.offset[rf];
+    if (s > alert) continue;
+    ContactPoint c;
+    const V3 mid = p.x - (s / 2) * n;
+    const V3 nn = ref_is_b ? n : -n;
+    c.point[0] = mid.x, c.point[1] = mid.y, c.point[2] = mid.z;
+    c.normal[0] = nn.x, c.normal[1] = nn.y, c.normal[2] = nn.z;
+    c.gap = s;
+    c.feature = (ref_is_b ? 0 : 1 << 14) | (rf & 0x3f) << 8 | (p.id & 0xff);
+    out.push_back(c);
+  }
+  reduce_manifold(out, first);
+}
+
+void polyhedron_plane(const Polyhedron& a, V3 n, V3 p, double alert, std::vector<ContactPoint>& out) {
+  const std::size_t first = out.size();
+  for (std::size_t i = 0; i < a.v.size(); ++i) {
+    const double s = dot(n, a.v[i] - p);
+    if (s > alert) continue;
+    ContactPoint c;
+    const V3 mid = a.v[i] - (s / 2) * n;
+    c.point[0] = mid.x, c.point[1] = mid.y, c.point[2] = mid.z;
+    c.normal[0] = n.x, c.normal[1] = n.y, c.normal[2] = n.z;
+    c.gap = s;
+    c.feature = static_cast<int>(i);
+    out.push_back(c);
+  }
+  reduce_manifold(out, first);
+}
+
+void sphere_polyhedron(V3 c, double R, const Polyhedron& b, double alert, std::vector<ContactPoint>& out) {
+  double s_max = -inf;
+  int f_max = 0;
+  for (std::size_t f = 0; f < b.faces.size(); ++f) {
+    const double s = dot(b.normal[f], c) - b.offset[f];
+    if (s > s_max) {
+      s_max = s;
+      f_max = static_cast<int>(f);
+    }
+  }
+  V3 n, q;
+  double dist;
+  if (s_max <= 0) {  // centre inside: the closest face
+    n = b.normal[f_max];
+    dist = s_max;
+    q = c - s_max * n;
+  } else {  // closest point on the surface: on a face, else on an edge
+    dist = inf;
+    for (std::size_t f = 0; f < b.faces.size(); ++f) {
+      const double s = dot(b.normal[f], c) - b.offset[f];
+      if (s < 0) continue;  // the centre is behind this face: its closest point is elsewhere
+      const V3 proj = c - s * b.normal[f];
+      bool inside = true;
+      const auto& fv = b.faces[f];
+      for (std::size_t i = 0; i < fv.size() && inside; ++i)
+        inside = dot(cross(b.v[fv[(i + 1) % fv.size()]] - b.v[fv[i]], b.normal[f]), proj - b.v[fv[i]]) <= 0;
+      if (inside && s < dist) {
+        dist = s;
+        q = proj;
+      }
+    }
+    for (const auto& e : b.edges) {
+      const V3 p0 = b.v[e[0]], d = b.v[e[1]] - p0;
+      const double t = std::clamp(dot(c - p0, d) / dot(d, d), 0.0, 1.0);
+      const V3 p = p0 + t * d;
+      if (norm(c - p) < dist) {
+        dist = norm(c - p);
+        q = p;
+      }
+    }
+    n = dist > 0 ? (1 / dist) * (c - q) : b.normal[f_max];
+  }
+  const double gap = dist - R;
+  if (gap > alert) return;
+  ContactPoint cp;
+  const V3 mid = q + (gap / 2) * n;
+  cp.point[0] = mid.x, cp.point[1] = mid.y, cp.point[2] = mid.z;
+  cp.normal[0] = n.x, cp.normal[1] = n.y, cp.normal[2] = n.z;
+  cp.gap = gap;
+  out.push_back(cp);
+}
+
+}  // namespace moreau::geom
