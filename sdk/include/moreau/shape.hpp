@@ -9,6 +9,11 @@
 //   sphere   3D  geometry = {radius}
 //   plane    3D  geometry = {nx, ny, nz}           (half-space below the plane through the
 //                                                  body origin, outward unit normal, body frame)
+//   polygon  2D  geometry = {n, x0, y0, …}          (convex, counter-clockwise, body frame)
+//   box      3D  geometry = {lx, ly, lz}            (full edge lengths along the body axes)
+//   convex   3D  geometry = {nv, x0, y0, z0, …, nf, k, i0…i(k−1), …}  (corners, then the hull's
+//                                                  faces as corner indices, counter-clockwise
+//                                                  seen from outside)
 #include <moreau/modelization.hpp>
 #include <moreau/plugin.hpp>
 #include <vector>
