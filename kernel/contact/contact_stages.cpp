@@ -2,6 +2,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <cstdio>
 #include <moreau/error.hpp>
 #include <moreau/rigid_fields.hpp>
 
@@ -107,6 +108,26 @@ void ContactStages::narrow_phase(StepContext& c) {
     const int law = law_of[f.group * groups + s.group];
     for (const auto& p : scratch_) contacts_.push_back(Detected{{first, second}, p, law, contact_key(first, second, p.feature)});
   }
+  if (!initial_overlaps_checked_) warn_initial_overlaps(c);
+}
+
+void ContactStages::warn_initial_overlaps(const StepContext& c) {
+  // Bodies placed overlapping are pushed apart by the first steps (violently if deep): say
+  // which ones, once, at the first step of the run. 1 nm of slack ignores bodies placed
+  // exactly touching, whose computed gap is a rounding error.
+  initial_overlaps_checked_ = true;
+  const auto& names = c.state.names();
+  int shown = 0, found = 0;
+  for (const auto& ct : contacts_) {
+    if (!(ct.point.gap < -(alert + 1e-9))) continue;
+    if (++found > 10) continue;
+    ++shown;
+    const int b0 = contactors[ct.contactor[0]].body, b1 = contactors[ct.contactor[1]].body;
+    std::fprintf(stderr, "warning: at the start, bodies \"%s\" and \"%s\" overlap by %.3g m (deeper than the alert distance %.3g m)\n",
+                 names[std::min(b0, b1)].c_str(), names[std::max(b0, b1)].c_str(),
+                 -ct.point.gap, alert);
+  }
+  if (found > shown) std::fprintf(stderr, "warning: ... and %d more overlapping contacts at the start\n", found - shown);
 }
 
 void ContactStages::warm_start(StepContext& c) {

@@ -68,6 +68,8 @@ class ContactStages {
     std::uint64_t key;
   };
   const DetectorUse* detector_for(const std::string& a, const std::string& b) const;
+  void warn_initial_overlaps(const StepContext& c);
+  bool initial_overlaps_checked_ = false;
 
   std::vector<double> poses_;  ///< per body: position (3) then rotation (4: 2D angle in [0])
   std::vector<double> sweep_;  ///< per body: distance it may travel in the step (m)

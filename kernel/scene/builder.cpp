@@ -518,6 +518,9 @@ void check_scene(const std::string& scene_path) {
   JsonFile file = read_json_file(scene_path);
   SceneChecker checker(file);
   checker.check();
+  // Then build it (nothing is written): plugins check what a schema cannot say, such as
+  // degenerate shapes or inconsistent masses, in their constructors.
+  checker.build("");
 }
 
 }  // namespace moreau::kernel

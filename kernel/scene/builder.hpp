@@ -12,7 +12,8 @@ namespace moreau::kernel {
 /// `output_path` (default: the scene's output.file) sets where plugins write their files.
 std::unique_ptr<World> build_world(const std::string& scene_path, const std::string& output_path = "");
 
-/// Validates only (what `moreau check` runs). Same errors as build_world.
+/// Validates and builds the scene without running or writing anything (what `moreau check`
+/// runs). Same errors as build_world.
 void check_scene(const std::string& scene_path);
 
 }  // namespace moreau::kernel
