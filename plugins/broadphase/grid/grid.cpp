@@ -7,7 +7,6 @@
 #include <cmath>
 #include <cstdint>
 #include <moreau/broadphase.hpp>
-#include <unordered_map>
 
 namespace {
 using namespace moreau;
@@ -44,28 +43,73 @@ class Grid : public BroadPhase {
     };
     auto push = [&](int i, int j) { out.emplace_back(std::min(i, j), std::max(i, j)); };
     if (size > 0 && !bounded.empty()) {
+      // Cells are hashed into a table of 2^k ≥ 2n buckets, filled by a counting sort into
+      // one packed array (cell, box, body, group of each contactor, bucket after bucket):
+      // linear time, and the neighbour scans read contiguous memory instead of chasing
+      // contactor indices through the input arrays.
       const double inv = 1 / size;
-      cells_.clear();
-      keys_.resize(n);
-      for (int i : bounded) {
-        std::int64_t c[3] = {0, 0, 0};
-        for (int k = 0; k < d; ++k) c[k] = static_cast<std::int64_t>(std::floor(in.lo[3 * i + k] * inv));
-        keys_[i] = {c[0], c[1], c[2]};
-        cells_[hash(c[0], c[1], c[2])].push_back(i);
+      // Dense cell numbering (x fastest) when the occupied region has at most 8 cells per
+      // contactor: cells near in space are near in memory, so the scans stay in cache.
+      // Otherwise (scattered contactors) cells are hashed into 2^k ≥ 2n buckets.
+      std::int64_t cmin[3] = {0, 0, 0}, cmax[3] = {0, 0, 0};
+      for (int k = 0; k < d; ++k) {
+        cmin[k] = INT64_MAX;
+        cmax[k] = INT64_MIN;
       }
+      cell_of_.resize(n);
       for (int i : bounded) {
-        const auto& c = keys_[i];
-        const int zr = d == 3 ? 1 : 0;
+        for (int k = 0; k < d; ++k) {
+          const auto c = static_cast<std::int64_t>(std::floor(in.lo[3 * i + k] * inv));
+          cell_of_[i][k] = c;
+          cmin[k] = std::min(cmin[k], c);
+          cmax[k] = std::max(cmax[k], c);
+        }
+        if (d == 2) cell_of_[i][2] = 0;
+      }
+      double dense_cells = 1;
+      for (int k = 0; k < d; ++k) dense_cells *= static_cast<double>(cmax[k] - cmin[k] + 3);
+      dense_ = dense_cells <= 8.0 * static_cast<double>(bounded.size()) + 64;
+      for (int k = 0; k < 3; ++k) {
+        origin_[k] = k < d ? cmin[k] - 1 : 0;
+        extent_[k] = k < d ? cmax[k] - cmin[k] + 3 : 1;
+      }
+      std::size_t buckets = 1;
+      if (dense_) {
+        buckets = static_cast<std::size_t>(dense_cells);
+      } else {
+        while (buckets < 2 * bounded.size()) buckets <<= 1;
+      }
+      mask_ = buckets - 1;
+      start_.assign(buckets + 1, 0);
+      for (int i : bounded) ++start_[bucket(cell_of_[i][0], cell_of_[i][1], cell_of_[i][2]) + 1];
+      for (std::size_t k = 0; k < buckets; ++k) start_[k + 1] += start_[k];
+      fill_.assign(start_.begin(), start_.end() - 1);
+      packed_.resize(bounded.size());
+      for (int i : bounded) {
+        const auto& c = cell_of_[i];
+        Item& it = packed_[fill_[bucket(c[0], c[1], c[2])]++];
+        it.cell = c;
+        it.index = i;
+        it.body = in.body[i];
+        it.group = in.group[i];
+        for (int k = 0; k < 3; ++k) it.lo[k] = in.lo[3 * i + k], it.hi[k] = in.hi[3 * i + k];
+      }
+      const int zr = d == 3 ? 1 : 0;
+      for (const Item& a : packed_) {
         for (int dx = -1; dx <= 1; ++dx)
           for (int dy = -1; dy <= 1; ++dy)
             for (int dz = -zr; dz <= zr; ++dz) {
-              auto it = cells_.find(hash(c[0] + dx, c[1] + dy, c[2] + dz));
-              if (it == cells_.end()) continue;
-              for (int j : it->second) {
-                if (j <= i) continue;
-                const auto& cj = keys_[j];  // hash collisions: check the cell really is a neighbour
-                if (std::abs(cj[0] - c[0]) > 1 || std::abs(cj[1] - c[1]) > 1 || std::abs(cj[2] - c[2]) > 1) continue;
-                if (ok(i, j)) push(i, j);
+              const std::int64_t nc[3] = {a.cell[0] + dx, a.cell[1] + dy, a.cell[2] + dz};
+              const std::uint64_t h = bucket(nc[0], nc[1], nc[2]);
+              for (std::size_t m = start_[h]; m < start_[h + 1]; ++m) {
+                const Item& b = packed_[m];
+                if (b.index <= a.index) continue;
+                // Another cell may share the bucket: only the true neighbour counts.
+                if (b.cell[0] != nc[0] || b.cell[1] != nc[1] || b.cell[2] != nc[2]) continue;
+                if (a.body == b.body || !in.interacts[a.group * in.groups + b.group]) continue;
+                bool overlap = true;
+                for (int k = 0; k < d; ++k) overlap &= !(a.hi[k] < b.lo[k] || b.hi[k] < a.lo[k]);
+                if (overlap) out.emplace_back(a.index, b.index);
               }
             }
       }
@@ -80,13 +124,31 @@ class Grid : public BroadPhase {
   }
 
  private:
+  /// The bucket of a cell. Dense: cells outside the numbered block (only neighbours of
+  /// border cells, which the block's one-cell margin already covers) go to bucket 0, the
+  /// margin's corner, which holds no contactor.
+  std::uint64_t bucket(std::int64_t x, std::int64_t y, std::int64_t z) const {
+    if (!dense_) return hash(x, y, z) & mask_;
+    const std::int64_t a = x - origin_[0], b = y - origin_[1], c = z - origin_[2];
+    if (a < 0 || b < 0 || c < 0 || a >= extent_[0] || b >= extent_[1] || c >= extent_[2]) return 0;
+    return static_cast<std::uint64_t>(a + extent_[0] * (b + extent_[1] * c));
+  }
   static std::uint64_t hash(std::int64_t x, std::int64_t y, std::int64_t z) {
     return static_cast<std::uint64_t>(x) * 73856093ULL ^ static_cast<std::uint64_t>(y) * 19349663ULL ^
            static_cast<std::uint64_t>(z) * 83492791ULL;
   }
   double cell_;
-  std::unordered_map<std::uint64_t, std::vector<int>> cells_;
-  std::vector<std::array<std::int64_t, 3>> keys_;
+  struct Item {
+    std::array<std::int64_t, 3> cell;
+    int index, body, group;
+    double lo[3], hi[3];
+  };
+  std::vector<std::array<std::int64_t, 3>> cell_of_;
+  bool dense_ = false;
+  std::int64_t origin_[3] = {0, 0, 0}, extent_[3] = {1, 1, 1};
+  std::uint64_t mask_ = 0;
+  std::vector<std::size_t> start_, fill_;  // bucket b holds packed_[start_[b] .. start_[b+1])
+  std::vector<Item> packed_;
 };
 MOREAU_REGISTER(Grid, "grid")
 }  // namespace

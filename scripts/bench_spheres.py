@@ -1,0 +1,78 @@
+#!/usr/bin/env python3
+"""Benchmark: 3D spheres in a box, N = 10^4 (and 10^5 with --large), time per step split by
+stage and the NLGS sweep throughput (contact updates per second).
+
+The spheres start as a touching cubic lattice resting on the floor, so every step has
+~3 contacts per sphere from the start. The run goes `--steps` steps with a frame each step;
+stage times come from `moreau run`'s table, iterations and contact counts from the frames.
+
+    python3 scripts/bench_spheres.py [--moreau build/bin/moreau] [--steps 20] [--large]
+"""
+import argparse, json, math, os, re, subprocess, sys, tempfile, time
+
+import h5py
+
+
+def scene(n, steps, path_h5):
+    side = round(n ** (1 / 3))
+    nz = math.ceil(n / (side * side))
+    r, pitch = 0.01, 0.02  # touching: ~3 contacts per sphere
+    bodies = [{"name": "floor", "fixed": True, "position": [0, 0, 0], "contactors": [{"shape": "plane", "group": "wall"}]}]
+    L = side * pitch
+    for nx, p in (([1, 0, 0], [0, 0, 0]), ([-1, 0, 0], [L, 0, 0]), ([0, 1, 0], [0, 0, 0]), ([0, -1, 0], [0, L, 0])):
+        bodies.append({"name": f"wall_{len(bodies)}", "fixed": True, "position": p,
+                       "contactors": [{"shape": "plane", "normal": nx, "group": "wall"}]})
+    k = 0
+    for z in range(nz):
+        for y in range(side):
+            for x in range(side):
+                if k == n:
+                    break
+                bodies.append({"name": f"s{k}", "material": "grain",
+                               "position": [pitch / 2 + x * pitch, pitch / 2 + y * pitch, r + z * 2 * r],
+                               "contactors": [{"shape": "sphere", "radius": r, "group": "grain"}]})
+                k += 1
+    return {"format": "moreau-scene/1", "dimension": 3, "time": {"step": 5e-4, "duration": steps * 5e-4},
+            "gravity": [0, 0, -9.81], "materials": {"grain": {"density": 2600}},
+            "laws": {"rough": {"type": "coulomb", "friction": 0.3}},
+            "bodies": bodies,
+            "interactions": [{"groups": ["grain", "grain"], "law": "rough"}, {"groups": ["grain", "wall"], "law": "rough"}],
+            "solver": {"type": "nlgs", "tolerance": 1e-4, "max_iterations": 200},
+            "output": {"file": path_h5, "every": 1}}
+
+
+def main():
+    ap = argparse.ArgumentParser()
+    ap.add_argument("--moreau", default=os.path.join(os.path.dirname(__file__), "..", "build", "bin", "moreau"))
+    ap.add_argument("--steps", type=int, default=20)
+    ap.add_argument("--large", action="store_true", help="also 10^5 spheres")
+    a = ap.parse_args()
+    sizes = [10_000] + ([100_000] if a.large else [])
+    print(f"{'spheres':>8} {'contacts':>9} {'sweeps/step':>11} {'ms/step':>8} {'detect %':>8} {'solve %':>8} "
+          f"{'update %':>8} {'output %':>8} {'NLGS updates/s':>15}")
+    for n in sizes:
+        with tempfile.TemporaryDirectory() as d:
+            h5 = os.path.join(d, "out.h5")
+            sp = os.path.join(d, "scene.json")
+            json.dump(scene(n, a.steps, h5), open(sp, "w"))
+            out = subprocess.run([a.moreau, "run", sp], capture_output=True, text=True)
+            if out.returncode != 0:
+                sys.exit(out.stderr)
+            stages = {m.group(1): float(m.group(2)) for m in re.finditer(r"^\s+(\w+)\s+([0-9.]+) s", out.stdout + out.stderr, re.M)}
+            total = stages["total"]
+            detect = sum(stages.get(s, 0) for s in ("detection_configuration", "broad_phase", "narrow_phase"))
+            update = sum(stages.get(s, 0) for s in ("free_velocity", "update_dofs", "end_step", "warm_start", "store_reactions"))
+            with h5py.File(h5) as f:
+                frames = [f["frames"][k] for k in sorted(f["frames"])][1:]
+                sweeps = sum(int(fr["solver"].attrs["iterations"]) for fr in frames)
+                updates = sum(int(fr["solver"].attrs["iterations"]) * len(fr["contacts/gap"]) for fr in frames)
+                contacts = len(frames[-1]["contacts/gap"])
+            # A sweep plus the error checks (one every `check_every` = 5 sweeps, each about a sweep).
+            rate = updates / stages["solve"]
+            print(f"{n:>8} {contacts:>9} {sweeps / len(frames):>11.1f} {1000 * total / a.steps:>8.2f} "
+                  f"{100 * detect / total:>8.1f} {100 * stages['solve'] / total:>8.1f} {100 * update / total:>8.1f} "
+                  f"{100 * stages.get('output', 0) / total:>8.1f} {rate:>15.3g}")
+
+
+if __name__ == "__main__":
+    main()
