@@ -1,7 +1,7 @@
 // `nlgs`: non-linear Gauss–Seidel over contacts (Moreau, Jean; LMGC90's default). Each
 // sweep solves every contact's one-contact Coulomb problem exactly (local_coulomb.hpp)
-// with the others' impulses frozen. The sweep's hot data is packed per contact: the
-// diagonal blocks of W, contiguous; the off-diagonal part is read row by row from W.
+// with the others' impulses frozen (nlgs_sweep.hpp). The sweep's hot data is packed per
+// contact: the diagonal blocks of W, contiguous; the off-diagonal part is read row by row from W.
 // Stopping test: the DESIGN §1 error, recomputed from r.
 #include <algorithm>
 #include <moreau/contact_error.hpp>
@@ -9,7 +9,7 @@
 #include <numeric>
 #include <random>
 
-#include "local_coulomb.hpp"
+#include "nlgs_sweep.hpp"
 
 namespace {
 using namespace moreau;
@@ -43,31 +43,14 @@ class Nlgs : public Solver {
       rep.converged = true;
       return rep;
     }
-    // Pack the diagonal blocks.
-    blocks_.assign(static_cast<std::size_t>(nc) * d * d, 0.0);
-    for (Eigen::Index a = 0; a < nc; ++a)
-      for (int i = 0; i < d; ++i)
-        for (Eigen::SparseMatrix<double, Eigen::RowMajor>::InnerIterator it(P.W, a * d + i); it; ++it)
-          if (it.col() >= a * d && it.col() < (a + 1) * d) blocks_[(a * d + i) * d + (it.col() - a * d)] = it.value();
+    sweeper_.prepare(P);
     order_.resize(nc);
     std::iota(order_.begin(), order_.end(), 0);
     if (ordering_ == "reverse") std::reverse(order_.begin(), order_.end());
     std::mt19937 rng(seed_);
     for (long it = 1; it <= max_it_; ++it) {
       if (ordering_ == "shuffle") std::shuffle(order_.begin(), order_.end(), rng);
-      for (Eigen::Index a : order_) {
-        double b[3], rn[3], old[3];
-        const double* A = &blocks_[a * d * d];
-        for (int i = 0; i < d; ++i) {
-          double s = P.q[a * d + i];
-          for (Eigen::SparseMatrix<double, Eigen::RowMajor>::InnerIterator e(P.W, a * d + i); e; ++e) s += e.value() * r[e.col()];
-          for (int j = 0; j < d; ++j) s -= A[i * d + j] * r[a * d + j];  // leave out the contact itself
-          b[i] = s;
-          old[i] = rn[i] = r[a * d + i];
-        }
-        nlgs::solve_local(d, A, b, P.mu[a], rn);
-        for (int i = 0; i < d; ++i) r[a * d + i] = omega_ * rn[i] + (1 - omega_) * old[i];
-      }
+      sweeper_.sweep(P, r, omega_, order_);
       rep.iterations = it;
       if (it != 1 && it % check_every_ != 0 && it != max_it_) continue;
       u = P.W * r + P.q;
@@ -87,7 +70,7 @@ class Nlgs : public Solver {
   std::string ordering_;
   unsigned seed_;
   long check_every_;
-  std::vector<double> blocks_;
+  nlgs::Sweeper sweeper_;
   std::vector<Eigen::Index> order_;
 };
 MOREAU_REGISTER(Nlgs, "nlgs")
