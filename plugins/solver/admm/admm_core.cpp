@@ -2,18 +2,24 @@
 
 #include <algorithm>
 #include <cmath>
-#include <cstdio>
-#include <cstdlib>
+#include <vector>
 #include <moreau/contact_error.hpp>
 
 namespace moreau::admm {
 
 namespace {
-const bool TRACE = std::getenv("MTRACE") != nullptr;
+/// P_K; sdk project_on_cone keeps x when μ = 0, x_T = 0 and x_n < 0 (0 ≤ μ x_n holds as
+/// −0): such an x projects to the apex.
+inline void project_cone(int d, double mu, const double* x, double* out) {
+  project_on_cone(d, mu, x, out);
+  if (out[0] < 0)
+    for (int k = 0; k < d; ++k) out[k] = 0;
+}
+
 
 void project_all(const LocalProblem& P, const Eigen::VectorXd& x, Eigen::VectorXd& out) {
   const int d = P.dim;
-  for (Eigen::Index a = 0; a < P.contacts(); ++a) project_on_cone(d, P.mu[a], x.data() + a * d, out.data() + a * d);
+  for (Eigen::Index a = 0; a < P.contacts(); ++a) project_cone(d, P.mu[a], x.data() + a * d, out.data() + a * d);
 }
 
 /// s_α = μ_α ‖u_T,α‖ on the normal component, zero on the tangent ones.
@@ -123,6 +129,7 @@ SolverReport Admm::solve(const LocalProblem& P, const Options& o, Eigen::VectorX
     return rep;
   }
   double tau_k = 1, e_k = INFINITY;
+  std::vector<double> best_hist;
   for (long it = 1; it <= o.max_iterations; ++it) {
     rep.iterations = it;
     tmp = P.W * x + P.q;  // the shift from the unprojected iterate, as Siconos does
@@ -138,13 +145,17 @@ SolverReport Admm::solve(const LocalProblem& P, const Options& o, Eigen::VectorX
     const double dual = rho * (zh - z).cwiseProduct(sqrtD).norm();
     u = P.W * z + P.q;
     err = natural_map_error(P, z, u);
-    if (TRACE) std::fprintf(stderr, "it %ld err %.3e rho %.3e p %.2e d %.2e\n", it, err, rho, primal, dual);
     if (!std::isfinite(err) || !std::isfinite(primal) || !std::isfinite(dual)) break;
     if (err < best_err) {
       best_err = err;
       best = z;
     }
     if (err <= o.tolerance) break;
+    if (o.stall_window > 0) {
+      best_hist.push_back(best_err);
+      const auto h = static_cast<long>(best_hist.size());
+      if (h > o.stall_window && best_err > o.stall_factor * best_hist[h - 1 - o.stall_window]) break;
+    }
     const double e = primal * primal + dual * dual;
     if (o.acceleration && e < o.restart * e_k) {
       const double tau = 0.5 * (1 + std::sqrt(1 + 4 * tau_k * tau_k));

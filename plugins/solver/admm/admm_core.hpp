@@ -9,9 +9,9 @@
 //            otherwise a restart from the previous iterate (Goldstein et al. 2014)
 // D is a scalar per contact (the mean of its diagonal block of W), which keeps the
 // projection on K exact and makes the penalty insensitive to mass ratios. ρ adapts by
-// residual balancing (primal ‖r − z‖ against dual ρ‖ẑ − z‖, both in the D^½-scaled variables). W + ρD is factorised by a
-// sparse LDLᵀ when W is symmetric, by a sparse LU otherwise (real problem files are not
-// always exactly symmetric). The iterate returned is z (in K); its DESIGN §1 error is the
+// residual balancing (primal ‖r − z‖ against dual ρ‖ẑ − z‖, both in the D^½-scaled
+// variables). W + ρD is factorised by a sparse LDLᵀ when W is symmetric, by a sparse LU
+// otherwise (real problem files are not always exactly symmetric: Capsules is off by 4e-4). The iterate returned is z (in K); its DESIGN §1 error is the
 // stopping test.
 #include <Eigen/SparseCholesky>
 #include <Eigen/SparseLU>
@@ -29,6 +29,10 @@ struct Options {
   double factor = 2;             ///< ρ is multiplied or divided by this
   bool acceleration = true;      ///< Nesterov extrapolation with restart
   double restart = 0.999;        ///< extrapolate while the residual falls below this fraction of the last
+  /// Stop early (not converged) when the best error has not fallen below `stall_factor`
+  /// times its value of `stall_window` iterations before (0: never). Used by `auto`.
+  long stall_window = 0;
+  double stall_factor = 0.5;
 };
 
 class Admm {

@@ -1,0 +1,39 @@
+// `apgd`: Nesterov-accelerated projected gradient with backtracking on the Lipschitz
+// estimate and gradient restart, on the De Saxcé-shifted problem (apgd_core.hpp).
+// Stopping test: the DESIGN §1 error, recomputed from r.
+#include <moreau/solver.hpp>
+
+#include "apgd_core.hpp"
+
+namespace {
+using namespace moreau;
+
+class ApgdSolver : public Solver {
+ public:
+  static Schema schema() {
+    Schema s;
+    s.number("tolerance", "target DESIGN §1 error").gt(0).fallback(1e-6);
+    s.integer("max_iterations", "maximum gradient steps").min(1).fallback(10000);
+    s.number("shrink", "the Lipschitz estimate is multiplied by this after each step (1: never shrinks)").gt(0).max(1).fallback(0.9);
+    s.boolean("restart", "restart the extrapolation when a step goes uphill").fallback(true);
+    return s;
+  }
+  static constexpr const char* doc = "accelerated projected gradient with adaptive step and restart (De Saxce shift)";
+
+  ApgdSolver(const Params& p, const BuildContext&) {
+    o_.tolerance = p.number("tolerance");
+    o_.max_iterations = p.integer("max_iterations");
+    o_.shrink = p.number("shrink");
+    o_.restart = p.boolean("restart");
+  }
+
+  SolverReport solve(const LocalProblem& P, Eigen::VectorXd& r, Eigen::VectorXd& u) override {
+    return apgd::solve(P, o_, r, u);
+  }
+
+ private:
+  apgd::Options o_;
+};
+MOREAU_REGISTER(ApgdSolver, "apgd")
+}  // namespace
+MOREAU_PLUGIN_LIBRARY("moreau_solver_apgd")

@@ -1,0 +1,110 @@
+#include "apgd_core.hpp"
+
+#include <cmath>
+#include <moreau/contact_error.hpp>
+
+namespace moreau::apgd {
+
+namespace {
+/// P_K; sdk project_on_cone keeps x when μ = 0, x_T = 0 and x_n < 0 (0 ≤ μ x_n holds as
+/// −0): such an x projects to the apex.
+inline void project_cone(int d, double mu, const double* x, double* out) {
+  project_on_cone(d, mu, x, out);
+  if (out[0] < 0)
+    for (int k = 0; k < d; ++k) out[k] = 0;
+}
+
+void project_all(const LocalProblem& P, const Eigen::VectorXd& x, Eigen::VectorXd& out) {
+  const int d = P.dim;
+  for (Eigen::Index a = 0; a < P.contacts(); ++a) project_cone(d, P.mu[a], x.data() + a * d, out.data() + a * d);
+}
+void de_saxce_add(const LocalProblem& P, Eigen::VectorXd& u) {
+  const int d = P.dim;
+  for (Eigen::Index a = 0; a < P.contacts(); ++a) {
+    const double* ua = u.data() + a * d;
+    u[a * d] += P.mu[a] * (d == 2 ? std::fabs(ua[1]) : std::hypot(ua[1], ua[2]));
+  }
+}
+}  // namespace
+
+SolverReport solve(const LocalProblem& P, const Options& o, Eigen::VectorXd& r, Eigen::VectorXd& u) {
+  const int d = P.dim;
+  const Eigen::Index nc = P.contacts(), n = d * nc;
+  SolverReport rep;
+  if (r.size() != n || !r.allFinite()) r = Eigen::VectorXd::Zero(n);
+  if (nc == 0) {
+    u = P.q;
+    rep.converged = true;
+    return rep;
+  }
+  Eigen::VectorXd D(n);
+  double mean_diag = 0;
+  for (Eigen::Index i = 0; i < n; ++i) mean_diag += P.W.coeff(i, i);
+  mean_diag /= static_cast<double>(n);
+  if (!(mean_diag > 0)) mean_diag = 1;
+  for (Eigen::Index a = 0; a < nc; ++a) {
+    double t = 0;
+    for (int k = 0; k < d; ++k) t += P.W.coeff(a * d + k, a * d + k);
+    t /= d;
+    if (!(t > 1e-12 * mean_diag)) t = mean_diag;
+    for (int k = 0; k < d; ++k) D[a * d + k] = t;
+  }
+  const Eigen::VectorXd Dinv = D.cwiseInverse();
+
+  Eigen::VectorXd x(n), Wx(n), y(n), Wy(n), xn(n), Wxn(n), g(n), dl(n), Wd(n), tmp(n), best(n);
+  project_all(P, r, x);
+  Wx = P.W * x;
+  y = x;
+  Wy = Wx;
+  u = Wx + P.q;
+  double best_err = natural_map_error(P, x, u);
+  best = x;
+  double L = 1, theta = 1;
+  for (long it = 1; it <= o.max_iterations && best_err > o.tolerance; ++it) {
+    rep.iterations = it;
+    g = Wy + P.q;
+    de_saxce_add(P, g);
+    bool ok = false;
+    for (int bt = 0; bt < 60; ++bt) {
+      tmp = y - (1 / L) * Dinv.cwiseProduct(g);
+      project_all(P, tmp, xn);
+      dl = xn - y;
+      Wd = P.W * dl;
+      const double lhs = dl.dot(Wd), rhs = L * dl.dot(D.cwiseProduct(dl));
+      if (!std::isfinite(lhs)) break;
+      if (lhs <= rhs * (1 + 1e-12) + 1e-300) {
+        ok = true;
+        break;
+      }
+      L *= 2;
+    }
+    if (!ok) break;
+    Wxn = Wy + Wd;
+    const double theta_n = 0.5 * (-theta * theta + theta * std::sqrt(theta * theta + 4));
+    double beta = theta * (1 - theta) / (theta * theta + theta_n);
+    theta = theta_n;
+    if (o.restart && g.dot(xn - x) > 0) {  // the step goes uphill: restart the momentum
+      beta = 0;
+      theta = 1;
+    }
+    y = xn + beta * (xn - x);
+    Wy = Wxn + beta * (Wxn - Wx);
+    x.swap(xn);
+    Wx.swap(Wxn);
+    L *= o.shrink;
+    u = Wx + P.q;
+    const double e = natural_map_error(P, x, u);
+    if (!std::isfinite(e)) break;
+    if (e < best_err) {
+      best_err = e;
+      best = x;
+    }
+  }
+  r = best;
+  u = P.W * r + P.q;
+  rep.error = natural_map_error(P, r, u);
+  rep.converged = rep.error <= o.tolerance;
+  return rep;
+}
+
+}  // namespace moreau::apgd

@@ -1,0 +1,138 @@
+// `auto`: the solver to use when one does not know which. It starts cheap, with NLGS sweeps
+// (nlgs_sweep.hpp), which finish easy problems (few contacts, well conditioned) in a few
+// sweeps. When the error stops falling fast (stagnation: the best error has not halved over
+// the last `stall_sweeps` sweeps), it moves on from the best iterate so far to the
+// regularised semismooth Newton method (newton_core.hpp), and when Newton stalls in turn,
+// to ADMM (admm_core.hpp), then back to Newton (with another Alart–Curnier parameter), and
+// so on until the tolerance or the iteration budget is reached, or four stages in a row
+// did not improve the error. Every stage starts from the best iterate seen, and the one
+// returned is the best; `iterations` counts all of them (sweeps, Newton and ADMM steps).
+// Stopping test: the DESIGN §1 error, recomputed from r.
+#include <algorithm>
+#include <cmath>
+#include <moreau/contact_error.hpp>
+#include <moreau/solver.hpp>
+#include <vector>
+
+#include "admm_core.hpp"
+#include "newton_core.hpp"
+#include "nlgs_sweep.hpp"
+
+namespace {
+using namespace moreau;
+
+class Auto : public Solver {
+ public:
+  static Schema schema() {
+    Schema s;
+    s.number("tolerance", "target DESIGN §1 error").gt(0).fallback(1e-6);
+    s.integer("max_iterations", "maximum iterations of all stages together (NLGS sweeps, Newton and ADMM steps)").min(1).fallback(20000);
+    s.integer("nlgs_sweeps", "maximum NLGS sweeps of the first stage").min(0).fallback(200);
+    s.integer("stall_sweeps", "the NLGS stage ends when the best error has not halved over this many sweeps").min(1).fallback(10);
+    s.integer("newton_iterations", "maximum iterations of one Newton stage").min(1).fallback(100);
+    s.integer("newton_stall", "a Newton stage ends when the best error has not halved over this many iterations").min(1).fallback(20);
+    s.integer("admm_iterations", "maximum iterations of one ADMM stage").min(1).fallback(5000);
+    s.integer("admm_stall", "an ADMM stage ends when the best error has not halved over this many iterations").min(1).fallback(300);
+    return s;
+  }
+  static constexpr const char* doc = "NLGS sweeps, then regularised Newton and ADMM in turn from the best iterate, until converged";
+
+  Auto(const Params& p, const BuildContext&)
+      : tol_(p.number("tolerance")), max_it_(p.integer("max_iterations")), nlgs_sweeps_(p.integer("nlgs_sweeps")),
+        stall_sweeps_(p.integer("stall_sweeps")), newton_it_(p.integer("newton_iterations")),
+        newton_stall_(p.integer("newton_stall")), admm_it_(p.integer("admm_iterations")), admm_stall_(p.integer("admm_stall")) {}
+
+  SolverReport solve(const LocalProblem& P, Eigen::VectorXd& r, Eigen::VectorXd& u) override {
+    const int d = P.dim;
+    const Eigen::Index nc = P.contacts(), n = d * nc;
+    SolverReport rep;
+    if (r.size() != n || !r.allFinite()) r = Eigen::VectorXd::Zero(n);
+    if (nc == 0) {
+      u = P.q;
+      rep.converged = true;
+      return rep;
+    }
+    u = P.W * r + P.q;
+    double best_err = natural_map_error(P, r, u);
+    Eigen::VectorXd best = r;
+    long total = 0;
+    auto finish = [&]() {
+      r = best;
+      u = P.W * r + P.q;
+      rep.iterations = total;
+      rep.error = natural_map_error(P, r, u);
+      rep.converged = rep.error <= tol_;
+      return rep;
+    };
+    auto keep = [&](const Eigen::VectorXd& x, double e) {
+      if (e < best_err && x.allFinite()) {
+        best_err = e;
+        best = x;
+      }
+    };
+    if (best_err <= tol_) return finish();
+
+    // 1. NLGS sweeps, the error checked every few sweeps.
+    const long check = std::max<long>(1, std::min<long>(5, stall_sweeps_));
+    sweeper_.prepare(P);
+    std::vector<double> hist;  // best error at each check
+    for (long it = 1; it <= nlgs_sweeps_ && total < max_it_; ++it) {
+      sweeper_.sweep(P, r);
+      ++total;
+      if (it % check != 0) continue;
+      u = P.W * r + P.q;
+      const double e = natural_map_error(P, r, u);
+      if (!std::isfinite(e)) break;
+      keep(r, e);
+      if (best_err <= tol_) return finish();
+      hist.push_back(best_err);
+      const long back = stall_sweeps_ / check;
+      const auto h = static_cast<long>(hist.size());
+      if (h > back && best_err > 0.5 * hist[h - 1 - back]) break;  // stagnation
+    }
+
+    // 2. Newton and ADMM in turn, each from the best iterate.
+    bool newton_next = true;
+    int newton_stages = 0;
+    int fruitless = 0;  // consecutive stages that did not improve the best error
+    while (total < max_it_ && fruitless < 4) {
+      Eigen::VectorXd x = best, v;
+      const long budget = std::min(max_it_ - total, newton_next ? newton_it_ : admm_it_);
+      SolverReport s;
+      if (newton_next) {
+        newton::Options o;
+        o.tolerance = tol_;
+        o.max_iterations = budget;
+        o.stall_window = newton_stall_;
+        // Each Newton stage with another Alart–Curnier parameter: where one stalls (a
+        // local minimum of its merit), another usually does not.
+        static constexpr double scales[] = {3.0, 10.0, 1.0, 30.0, 0.3};
+        o.rho_scale = scales[newton_stages++ % 5];
+        s = newton_.solve(P, o, x, v);
+      } else {
+        admm::Options o;
+        o.tolerance = tol_;
+        o.max_iterations = budget;
+        o.stall_window = admm_stall_;
+        s = admm_.solve(P, o, x, v);
+      }
+      total += std::max<long>(s.iterations, 1);
+      const double before = best_err;
+      keep(x, s.error);
+      if (best_err <= tol_) break;
+      fruitless = best_err < 0.9 * before ? 0 : fruitless + 1;
+      newton_next = !newton_next;
+    }
+    return finish();
+  }
+
+ private:
+  double tol_;
+  long max_it_, nlgs_sweeps_, stall_sweeps_, newton_it_, newton_stall_, admm_it_, admm_stall_;
+  nlgs::Sweeper sweeper_;
+  admm::Admm admm_;
+  newton::Newton newton_;
+};
+MOREAU_REGISTER(Auto, "auto")
+}  // namespace
+MOREAU_PLUGIN_LIBRARY("moreau_solver_auto")

@@ -1,0 +1,39 @@
+// `auto` on the shared solver checks (solver_cases.hpp): hand-made problems with known
+// answers, redundant contacts, mass ratios, q = 0, μ ≥ 1, non-convergence said honestly,
+// warm starts; then the shared FCLib problems.
+#include "solver_cases.hpp"
+
+using namespace solver_cases;
+
+TEST(Auto, OpenContactHasNoImpulse) { open_contact("auto"); }
+TEST(Auto, StickingAndSlidingIn2D) { stick_and_slide_2d("auto"); }
+TEST(Auto, StickingAndSlidingIn3D) { stick_and_slide_3d("auto"); }
+TEST(Auto, FrictionlessAndLargeFriction) { frictionless_and_large_friction("auto"); }
+TEST(Auto, TwoCoupledContacts) { two_coupled_contacts("auto"); }
+TEST(Auto, RedundantContactsStayFiniteAndHonest) { redundant_contacts("auto"); }
+TEST(Auto, ZeroQ) { zero_q("auto"); }
+TEST(Auto, MassRatio1e4AgreesWithNlgs) { mass_ratio("auto", 1e-10); }
+TEST(Auto, RandomProblemsWithLargeFriction) { random_problems("auto", 1e-10, 12, 8, 1.0); }
+TEST(Auto, NotConvergedIsReportedAsSuch) { not_converged("auto"); }
+TEST(Auto, WarmStartAndEdgeCases) { warm_start("auto"); }
+
+TEST(Auto, CountsTheIterationsOfEveryStage) {
+  // The local FCLib test problem: NLGS stagnates, Newton finishes; the iterations reported
+  // are more than the NLGS sweeps alone and at most the budget.
+  auto prob = moreau::fclib::read(shared("fclib-local_problem_test.hdf5"));
+  auto s = make("auto", {{"tolerance", 1e-8}, {"max_iterations", 100000}, {"nlgs_sweeps", 20}});
+  Eigen::VectorXd r, u;
+  auto rep = s->solve(prob.local, r, u);
+  expect_honest(prob.local, r, u, rep, 1e-8, "auto");
+  EXPECT_TRUE(rep.converged);
+  EXPECT_GT(rep.iterations, 20);
+  EXPECT_LT(rep.iterations, 1000);
+}
+
+TEST(Auto, SharedFclibProblems) {
+  for (const char* f : {"fclib-local_problem_test.hdf5", "faf-Capsules-i97-269.hdf5", "faf-Box_Stacks-i0035-31-0.hdf5",
+                        "spheres-in-a-box-98-i10000-256-10.hdf5", "CubeH8.hdf5"}) {
+    fclib_case("auto", f, 1e-8, 20000, 5);
+    fclib_case("auto", f, 1e-4, 20000, 5);
+  }
+}
