@@ -13,7 +13,7 @@ import argparse, json, math, os, re, subprocess, sys, tempfile, time
 import h5py
 
 
-def scene(n, steps, path_h5):
+def scene(n, steps, path_h5, exchange):
     side = round(n ** (1 / 3))
     nz = math.ceil(n / (side * side))
     r, pitch = 0.01, 0.02  # touching: ~3 contacts per sphere
@@ -37,7 +37,7 @@ def scene(n, steps, path_h5):
             "laws": {"rough": {"type": "coulomb", "friction": 0.3}},
             "bodies": bodies,
             "interactions": [{"groups": ["grain", "grain"], "law": "rough"}, {"groups": ["grain", "wall"], "law": "rough"}],
-            "solver": {"type": "nlgs", "tolerance": 1e-4, "max_iterations": 200},
+            "solver": {"type": "nlgs", "tolerance": 1e-4, "max_iterations": 200, "exchange": exchange},
             "output": {"file": path_h5, "every": 1}}
 
 
@@ -46,15 +46,17 @@ def main():
     ap.add_argument("--moreau", default=os.path.join(os.path.dirname(__file__), "..", "build", "bin", "moreau"))
     ap.add_argument("--steps", type=int, default=20)
     ap.add_argument("--large", action="store_true", help="also 10^5 spheres")
+    ap.add_argument("--exchange", default="w,bodies",
+                    help="NLGS exchange variants to compare (comma-separated: w, bodies)")
     a = ap.parse_args()
     sizes = [10_000] + ([100_000] if a.large else [])
-    print(f"{'spheres':>8} {'contacts':>9} {'sweeps/step':>11} {'ms/step':>8} {'detect %':>8} {'solve %':>8} "
+    print(f"{'spheres':>8} {'exchange':>8} {'contacts':>9} {'sweeps/step':>11} {'ms/step':>8} {'detect %':>8} {'solve %':>8} "
           f"{'update %':>8} {'output %':>8} {'NLGS updates/s':>15}")
-    for n in sizes:
+    for n, exchange in [(n, x) for n in sizes for x in a.exchange.split(",")]:
         with tempfile.TemporaryDirectory() as d:
             h5 = os.path.join(d, "out.h5")
             sp = os.path.join(d, "scene.json")
-            json.dump(scene(n, a.steps, h5), open(sp, "w"))
+            json.dump(scene(n, a.steps, h5, exchange), open(sp, "w"))
             out = subprocess.run([a.moreau, "run", sp], capture_output=True, text=True)
             if out.returncode != 0:
                 sys.exit(out.stderr)
@@ -69,7 +71,7 @@ def main():
                 contacts = len(frames[-1]["contacts/gap"])
             # A sweep plus the error checks (one every `check_every` = 5 sweeps, each about a sweep).
             rate = updates / stages["solve"]
-            print(f"{n:>8} {contacts:>9} {sweeps / len(frames):>11.1f} {1000 * total / a.steps:>8.2f} "
+            print(f"{n:>8} {exchange:>8} {contacts:>9} {sweeps / len(frames):>11.1f} {1000 * total / a.steps:>8.2f} "
                   f"{100 * detect / total:>8.1f} {100 * stages['solve'] / total:>8.1f} {100 * update / total:>8.1f} "
                   f"{100 * stages.get('output', 0) / total:>8.1f} {rate:>15.3g}")
 

@@ -188,7 +188,7 @@ void ContactStages::solve(StepContext& c, const Integrator& integrator) {
         for (int j = 0; j < 3; ++j) rc[a].frame[i][j] = f[i][j];
     }
   }
-  assembly_.build(bodies, rc);
+  assembly_.build(bodies, rc, solver->reads_matrix_with_factor());
   problem_.dim = d;
   problem_.W = assembly_.W();
   problem_.q = assembly_.free_local_velocity(bodies);
@@ -200,7 +200,9 @@ void ContactStages::solve(StepContext& c, const Integrator& integrator) {
     problem_.q[static_cast<Eigen::Index>(a * d)] +=
         law.normal_shift(LawInput{contacts_[a].point.gap, u0[static_cast<Eigen::Index>(a * d)], c.h});
   }
+  assembly_.lend_factor(bodies, problem_.factor);
   report_ = solver->solve(problem_, r_, u_);
+  assembly_.take_back(problem_.factor);
   for (Eigen::Index i = 0; i < r_.size(); ++i)
     if (!std::isfinite(r_[i])) throw RunError("the contact solver returned non-finite impulses at step " + std::to_string(c.step));
   if (!report_.converged && stop_on_failure)

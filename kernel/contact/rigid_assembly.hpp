@@ -10,6 +10,7 @@
 // n points from b toward a, so u_n > 0 separates.
 #include <Eigen/Sparse>
 #include <cstdint>
+#include <moreau/contact_problem.hpp>
 #include <vector>
 
 namespace moreau::kernel {
@@ -31,17 +32,26 @@ struct RigidBodies {
 
 class RigidAssembly {
  public:
-  /// Builds H blocks and W for these contacts.
-  void build(const RigidBodies& bodies, const std::vector<RigidContact>& contacts);
+  /// Builds the H blocks for these contacts, and W unless `with_W` is false (a solver
+  /// working through body velocities does not read it; it is the largest array of a step).
+  void build(const RigidBodies& bodies, const std::vector<RigidContact>& contacts, bool with_W = true);
   /// q = H v_free (normal shifts are added by the caller).
   Eigen::VectorXd free_local_velocity(const RigidBodies& bodies) const;
+  /// W = H M⁻¹ Hᵀ; empty (0 × 0) when the last build was without it.
   const Eigen::SparseMatrix<double, Eigen::RowMajor>& W() const { return W_; }
   /// Body impulses Hᵀ r, nb × k, world frame (about the centre of mass).
   void body_impulses(const Eigen::VectorXd& r, std::size_t n_bodies, std::vector<double>& out) const;
   /// Local velocity of each contact at the start of the step, H v (v: nb × k).
   Eigen::VectorXd local_velocity(const std::vector<double>& v) const;
+  /// Hands the H blocks to `factor` for the solve (moved, not copied: they are the
+  /// biggest array of the step), with the bodies and the inverse masses (moved out of
+  /// `bodies`); bodies whose inverse mass is zero are marked −1. `take_back` returns H,
+  /// which `body_impulses` needs after the solve.
+  void lend_factor(RigidBodies& bodies, BodyFactor& factor);
+  void take_back(BodyFactor& factor);
 
  private:
+  void build_W(const RigidBodies& bodies);
   int dim_ = 3, k_ = 6;
   std::vector<RigidContact> contacts_;
   std::vector<double> H_;  ///< per contact, per side: d × k, row-major (side 1 already negated)

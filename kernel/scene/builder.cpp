@@ -65,7 +65,7 @@ class SceneChecker {
     check_plugin_list(Kind::force, "forces", forces_);
     check_plugin_list(Kind::hook, "hooks", hooks_);
     if (!top_["solver"].empty() || has_interactions()) {
-      solver_ = plugin_use(Kind::solver, top_["solver"], "/solver", "nlgs", {"on_failure"});
+      solver_ = plugin_use(Kind::solver, top_["solver"], "/solver", "auto", {"on_failure"});
       const json& sv = top_["solver"];
       if (sv.is_object() && sv.contains("on_failure")) {
         const json& f = sv["on_failure"];

@@ -180,10 +180,9 @@ inline void two_coupled_contacts(const std::string& s) {
   auto r = solve(s, problem(2, {2, 0, 1, 0, 0, 2, 0, 0, 1, 0, 2, 0, 0, 0, 0, 2}, {-1, 0, -1, 0}, {0, 0}));
   EXPECT_NEAR(r[0], 1.0 / 3, 1e-8);
   EXPECT_NEAR(r[2], 1.0 / 3, 1e-8);
-  // One closes, one opens: q = (−1, +1): r_1 = 1/2 and u_2 = 1/2 + 1 > 0. (μ = 0.3: with
-  // μ = 0 and u_T = 0 the SDK's project_on_cone leaves x_n < 0 in place, and the DESIGN
-  // error of the right answer would not be 0.)
-  auto r2 = solve(s, problem(2, {2, 0, 1, 0, 0, 2, 0, 0, 1, 0, 2, 0, 0, 0, 0, 2}, {-1, 0, 1, 0}, {0.3, 0.3}));
+  // One closes, one opens: q = (−1, +1): r_1 = 1/2 and u_2 = 1/2 + 1 > 0; frictionless, so
+  // the open contact has u_T = 0 and x_n < 0 must project to the apex.
+  auto r2 = solve(s, problem(2, {2, 0, 1, 0, 0, 2, 0, 0, 1, 0, 2, 0, 0, 0, 0, 2}, {-1, 0, 1, 0}, {0.0, 0.0}));
   EXPECT_NEAR(r2[0], 0.5, 1e-8);
   EXPECT_NEAR(r2[2], 0, 1e-8);
 }

@@ -13,7 +13,7 @@ namespace {
 std::unique_ptr<moreau::Solver> nlgs(double tol = 1e-12, long max_it = 1000) {
   return moreau_test::create<moreau::Solver>("nlgs",
                                              {{"tolerance", tol}, {"max_iterations", max_it}, {"relaxation", 1.0},
-                                              {"ordering", "given"}, {"seed", 1}, {"check_every", 1}},
+                                              {"ordering", "given"}, {"seed", 1}, {"check_every", 1}, {"exchange", "w"}},
                                              moreau::BuildContext{});
 }
 

@@ -2,6 +2,8 @@
 // sweep solves every contact's one-contact Coulomb problem exactly (local_coulomb.hpp)
 // with the others' impulses frozen (nlgs_sweep.hpp). The sweep's hot data is packed per
 // contact: the diagonal blocks of W, contiguous; the off-diagonal part is read row by row from W.
+// With the time-stepper's factored W (`exchange`), contacts see each other through body
+// velocities instead (nlgs_body_sweep.hpp), a fixed cost per contact.
 // Stopping test: the DESIGN §1 error, recomputed from r.
 #include <algorithm>
 #include <moreau/contact_error.hpp>
@@ -9,6 +11,7 @@
 #include <numeric>
 #include <random>
 
+#include "nlgs_body_sweep.hpp"
 #include "nlgs_sweep.hpp"
 
 namespace {
@@ -24,6 +27,10 @@ class Nlgs : public Solver {
     s.string("ordering", "contact order in a sweep").one_of({"given", "reverse", "shuffle"}).fallback("given");
     s.integer("seed", "seed of the shuffled order").min(0).fallback(1);
     s.integer("check_every", "sweeps between two evaluations of the error (each costs about one sweep)").min(1).fallback(5);
+    s.string("exchange", "how contacts see each other: through W's blocks (\"w\"), through body velocities "
+                         "(\"bodies\", needs the time-stepper's W = H M⁻¹ Hᵀ), or \"auto\": bodies when available")
+        .one_of({"auto", "w", "bodies"})
+        .fallback("auto");
     return s;
   }
   static constexpr const char* doc = "non-linear Gauss-Seidel with exact one-contact Coulomb solves";
@@ -31,7 +38,9 @@ class Nlgs : public Solver {
   Nlgs(const Params& p, const BuildContext&)
       : tol_(p.number("tolerance")), max_it_(p.integer("max_iterations")), omega_(p.number("relaxation")),
         ordering_(p.string("ordering")), seed_(static_cast<unsigned>(p.integer("seed"))),
-        check_every_(p.integer("check_every")) {}
+        check_every_(p.integer("check_every")), exchange_(p.string("exchange")) {}
+
+  bool reads_matrix_with_factor() const override { return exchange_ == "w"; }
 
   SolverReport solve(const LocalProblem& P, Eigen::VectorXd& r, Eigen::VectorXd& u) override {
     const int d = P.dim;
@@ -43,17 +52,27 @@ class Nlgs : public Solver {
       rep.converged = true;
       return rep;
     }
-    sweeper_.prepare(P);
+    const bool bodies = exchange_ == "bodies" || (exchange_ == "auto" && P.factor.present());
+    if (bodies)
+      body_sweeper_.prepare(P, r);
+    else
+      sweeper_.prepare(P);
     order_.resize(nc);
     std::iota(order_.begin(), order_.end(), 0);
     if (ordering_ == "reverse") std::reverse(order_.begin(), order_.end());
     std::mt19937 rng(seed_);
     for (long it = 1; it <= max_it_; ++it) {
       if (ordering_ == "shuffle") std::shuffle(order_.begin(), order_.end(), rng);
-      sweeper_.sweep(P, r, omega_, order_);
+      if (bodies)
+        body_sweeper_.sweep(r, omega_, order_);
+      else
+        sweeper_.sweep(P, r, omega_, order_);
       rep.iterations = it;
       if (it != 1 && it % check_every_ != 0 && it != max_it_) continue;
-      u = P.W * r + P.q;
+      if (bodies)
+        body_sweeper_.velocities(r, u);
+      else
+        u = P.W * r + P.q;
       rep.error = natural_map_error(P, r, u);
       if (rep.error <= tol_) {
         rep.converged = true;
@@ -70,7 +89,9 @@ class Nlgs : public Solver {
   std::string ordering_;
   unsigned seed_;
   long check_every_;
+  std::string exchange_;
   nlgs::Sweeper sweeper_;
+  nlgs::BodySweeper body_sweeper_;
   std::vector<Eigen::Index> order_;
 };
 MOREAU_REGISTER(Nlgs, "nlgs")

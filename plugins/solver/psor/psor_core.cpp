@@ -7,13 +7,7 @@
 namespace moreau::psor {
 
 namespace {
-/// P_K; sdk project_on_cone keeps x when μ = 0, x_T = 0 and x_n < 0 (0 ≤ μ x_n holds as
-/// −0): such an x projects to the apex.
-inline void project_cone(int d, double mu, const double* x, double* out) {
-  project_on_cone(d, mu, x, out);
-  if (out[0] < 0)
-    for (int k = 0; k < d; ++k) out[k] = 0;
-}
+inline void project_cone(int d, double mu, const double* x, double* out) { project_on_cone(d, mu, x, out); }
 
 }  // namespace
 

@@ -12,7 +12,7 @@ namespace moreau {
 inline void project_on_cone(int dim, double mu, const double* x, double* out) {
   const double n = x[0];
   const double t = dim == 2 ? std::fabs(x[1]) : std::sqrt(x[1] * x[1] + x[2] * x[2]);
-  if (t <= mu * n) {  // inside the cone ‖x_T‖ ≤ μ x_n
+  if (t <= mu * n && n >= 0) {  // inside the cone ‖x_T‖ ≤ μ x_n (n ≥ 0: with μ = 0, x_T = 0, x_n < 0 is outside)
     for (int k = 0; k < dim; ++k) out[k] = x[k];
   } else if (mu * t <= -n) {  // inside the polar cone: projects to the apex
     for (int k = 0; k < dim; ++k) out[k] = 0;

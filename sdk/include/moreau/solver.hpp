@@ -17,6 +17,10 @@ class MOREAU_API Solver : public Plugin {
   static constexpr Kind kind = Kind::solver;
   /// `r`: the warm start on entry (dim·nc values), the solution on exit; `u` = W r + q.
   virtual SolverReport solve(const LocalProblem& problem, Eigen::VectorXd& r, Eigen::VectorXd& u) = 0;
+  /// Whether solve() reads `problem.W` when `problem.factor` is present. A solver working
+  /// through body velocities only says false, and the time-stepper then skips assembling
+  /// W (the largest array of a step) and passes it empty (0 × 0).
+  virtual bool reads_matrix_with_factor() const { return true; }
 };
 
 }  // namespace moreau

@@ -1,0 +1,118 @@
+// NLGS exchanging impulses through body velocities (`exchange: bodies`) against the same
+// algorithm reading W (`exchange: w`), on random rigid-body problems given in factored
+// form W = H M⁻¹ Hᵀ, 2D and 3D, with fixed bodies; and the error when no factor is given.
+#include <gtest/gtest.h>
+
+#include <moreau/contact_error.hpp>
+#include <moreau/error.hpp>
+#include <moreau/solver.hpp>
+#include <random>
+
+#include "sim.hpp"
+
+namespace {
+
+std::unique_ptr<moreau::Solver> nlgs(const std::string& exchange) {
+  return moreau_test::create<moreau::Solver>("nlgs",
+                                             {{"tolerance", 1e-11}, {"max_iterations", 20000}, {"relaxation", 1.0},
+                                              {"ordering", "given"}, {"seed", 1}, {"check_every", 1}, {"exchange", exchange}},
+                                             moreau::BuildContext{});
+}
+
+/// nb bodies (the first `fixed` with zero inverse mass), nc contacts between random pairs
+/// of distinct bodies, random H blocks and SPD inverse masses; q pushes contacts closed.
+moreau::LocalProblem random_problem(int d, int nb, int fixed, int nc, unsigned seed) {
+  std::mt19937 rng(seed);
+  std::uniform_real_distribution<double> U(-1, 1);
+  const int k = d == 2 ? 3 : 6;
+  moreau::LocalProblem P;
+  P.dim = d;
+  auto& f = P.factor;
+  f.k = k;
+  f.inverse_mass.assign(static_cast<std::size_t>(nb * k * k), 0.0);
+  std::vector<Eigen::MatrixXd> Mi(nb, Eigen::MatrixXd::Zero(k, k));
+  for (int b = fixed; b < nb; ++b) {
+    Eigen::MatrixXd A = Eigen::MatrixXd::NullaryExpr(k, k, [&] { return U(rng); });
+    Mi[b] = A * A.transpose() + 0.5 * Eigen::MatrixXd::Identity(k, k);
+    for (int i = 0; i < k; ++i)
+      for (int j = 0; j < k; ++j) f.inverse_mass[b * k * k + i * k + j] = Mi[b](i, j);
+  }
+  f.body.resize(2 * nc);
+  f.H.resize(static_cast<std::size_t>(nc * 2 * d * k));
+  Eigen::MatrixXd H = Eigen::MatrixXd::Zero(nc * d, nb * k);
+  for (int a = 0; a < nc; ++a) {
+    const int b0 = fixed + static_cast<int>(rng() % static_cast<unsigned>(nb - fixed));  // a moving body
+    int b1 = static_cast<int>(rng() % static_cast<unsigned>(nb));
+    if (b1 == b0) b1 = (b0 + 1) % nb;
+    const int bs[2] = {b0, b1};
+    for (int s = 0; s < 2; ++s) {
+      f.body[2 * a + s] = bs[s] < fixed ? -1 : bs[s];
+      for (int i = 0; i < d; ++i)
+        for (int l = 0; l < k; ++l) {
+          const double h = U(rng);
+          f.H[(a * 2 + s) * d * k + i * k + l] = h;
+          H(a * d + i, bs[s] * k + l) += h;
+        }
+    }
+  }
+  Eigen::MatrixXd M = Eigen::MatrixXd::Zero(nb * k, nb * k);
+  for (int b = 0; b < nb; ++b) M.block(b * k, b * k, k, k) = Mi[b];
+  const Eigen::MatrixXd W = H * M * H.transpose();
+  P.W = W.sparseView();
+  P.q.resize(nc * d);
+  for (int a = 0; a < nc; ++a) {
+    P.q[a * d] = -0.5 - 0.5 * (U(rng) + 1);  // approaching
+    for (int i = 1; i < d; ++i) P.q[a * d + i] = U(rng);
+  }
+  P.mu = Eigen::VectorXd::Constant(nc, 0.3);
+  return P;
+}
+
+void same_answer_both_ways(int d, unsigned seed) {
+  // Few contacts on several bodies: W is non-singular and the solution unique, so both
+  // exchanges must reach the same r (to the tolerance over W's conditioning).
+  const auto P = random_problem(d, 6, 2, d == 2 ? 6 : 5, seed);
+  Eigen::VectorXd rw, uw, rb, ub;
+  const auto rep_w = nlgs("w")->solve(P, rw, uw);
+  const auto rep_b = nlgs("bodies")->solve(P, rb, ub);
+  ASSERT_TRUE(rep_w.converged) << rep_w.error;
+  ASSERT_TRUE(rep_b.converged) << rep_b.error;
+  EXPECT_NEAR(rep_b.error, moreau::natural_map_error(P, rb), 1e-12) << "the error is that of u = W r + q";
+  EXPECT_LT((ub - (P.W * rb + P.q)).norm(), 1e-10 * (1 + P.q.norm())) << "u from body velocities is W r + q";
+  EXPECT_LT((rb - rw).norm(), 1e-7 * (1 + rw.norm()));
+  EXPECT_GT(rw.norm(), 0.1) << "the case closes contacts";
+}
+
+TEST(NlgsBodies, SameAnswerAsWBlocksIn2D) {
+  for (unsigned seed = 1; seed <= 5; ++seed) same_answer_both_ways(2, seed);
+}
+
+TEST(NlgsBodies, SameAnswerAsWBlocksIn3D) {
+  for (unsigned seed = 1; seed <= 5; ++seed) same_answer_both_ways(3, seed);
+}
+
+TEST(NlgsBodies, WarmStartFromTheAnswerStopsAtOnce) {
+  const auto P = random_problem(3, 6, 2, 5, 7);
+  Eigen::VectorXd r, u;
+  ASSERT_TRUE(nlgs("bodies")->solve(P, r, u).converged);
+  const auto again = nlgs("bodies")->solve(P, r, u);
+  EXPECT_TRUE(again.converged);
+  EXPECT_EQ(again.iterations, 1) << "Δv must be rebuilt from the warm start";
+}
+
+TEST(NlgsBodies, WithoutAFactorTheErrorNamesTheOption) {
+  auto P = random_problem(3, 4, 1, 3, 3);
+  P.factor = {};
+  Eigen::VectorXd r, u;
+  try {
+    nlgs("bodies")->solve(P, r, u);
+    FAIL() << "no error";
+  } catch (const moreau::InputError& e) {
+    EXPECT_EQ(e.where(), "/solver/exchange");
+    EXPECT_NE(std::string(e.what()).find("factored form"), std::string::npos) << e.what();
+  }
+  // `auto` falls back to W.
+  EXPECT_TRUE(nlgs("auto")->solve(P, r, u).converged);
+}
+
+}  // namespace
