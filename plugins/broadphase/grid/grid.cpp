@@ -119,11 +119,26 @@ class Grid : public BroadPhase {
         if (static_cast<int>(j) != u && (std::find(unbounded.begin(), unbounded.end(), static_cast<int>(j)) == unbounded.end() || u < static_cast<int>(j)) &&
             ok(u, static_cast<int>(j)))
           push(u, static_cast<int>(j));
-    std::sort(out.begin(), out.end());
-    out.erase(std::unique(out.begin(), out.end()), out.end());
+    sort_pairs(n, out);
   }
 
  private:
+  /// Sorts the pairs by (first, second) in linear time: a counting sort on the first index,
+  /// then each first's few partners sorted in place (a comparison sort of all pairs was the
+  /// one super-linear step). Every pair is found once (one cell per box, each neighbour
+  /// cell scanned once; half-spaces once per partner), so there is nothing to deduplicate.
+  /// The order is what the narrow phase and the solver's contact order follow.
+  void sort_pairs(std::size_t n, std::vector<std::pair<int, int>>& out) {
+    first_.assign(n + 1, 0);
+    for (const auto& p : out) ++first_[static_cast<std::size_t>(p.first) + 1];
+    for (std::size_t i = 0; i < n; ++i) first_[i + 1] += first_[i];
+    sorted_.resize(out.size());
+    fill_.assign(first_.begin(), first_.end() - 1);
+    for (const auto& p : out) sorted_[fill_[static_cast<std::size_t>(p.first)]++] = p;
+    for (std::size_t i = 0; i < n; ++i)
+      std::sort(sorted_.begin() + static_cast<std::ptrdiff_t>(first_[i]), sorted_.begin() + static_cast<std::ptrdiff_t>(first_[i + 1]));
+    out.swap(sorted_);
+  }
   /// The bucket of a cell. Dense: cells outside the numbered block (only neighbours of
   /// border cells, which the block's one-cell margin already covers) go to bucket 0, the
   /// margin's corner, which holds no contactor.
@@ -149,6 +164,8 @@ class Grid : public BroadPhase {
   std::uint64_t mask_ = 0;
   std::vector<std::size_t> start_, fill_;  // bucket b holds packed_[start_[b] .. start_[b+1])
   std::vector<Item> packed_;
+  std::vector<std::size_t> first_;  // sort_pairs: pairs of first index i at [first_[i], first_[i+1])
+  std::vector<std::pair<int, int>> sorted_;
 };
 MOREAU_REGISTER(Grid, "grid")
 }  // namespace
