@@ -4,6 +4,7 @@
     /usr/bin/python3 scripts/make_pour_scenes.py
 """
 import json
+import math
 import random
 from pathlib import Path
 
@@ -83,10 +84,67 @@ def spheres_in_box_3d(n=6, layers=8, radius=0.01, seed=2):
     }
 
 
+def unit_quaternion(rng):
+    """A random rotation (uniform on SO(3), Shoemake), rounded yet unit to 1e-9."""
+    u1, u2, u3 = rng.random(), rng.random(), rng.random()
+    a, b = math.sqrt(1 - u1), math.sqrt(u1)
+    q = [a * math.sin(2 * math.pi * u2), a * math.cos(2 * math.pi * u2), b * math.sin(2 * math.pi * u3),
+         b * math.cos(2 * math.pi * u3)]
+    return [round(x, 12) for x in q]
+
+
+def clusters_3d(n=4, layers=4, radius=0.01, seed=3):
+    """Dumbbells and tetrahedral clusters of spheres (several contactors on one body, each at
+    an offset in the body frame), turned at random and poured into a box."""
+    rng = random.Random(seed)
+    pitch = 5 * radius
+    half = n * pitch / 2
+    planes = [("floor", [0, 0, 0], [0, 0, 1]), ("x0", [-half, 0, 0], [1, 0, 0]), ("x1", [half, 0, 0], [-1, 0, 0]),
+              ("y0", [0, -half, 0], [0, 1, 0]), ("y1", [0, half, 0], [0, -1, 0])]
+    bodies = [{"name": name, "fixed": True, "position": p,
+               "contactors": [{"shape": "plane", "normal": nrm, "group": "wall"}]} for name, p, nrm in planes]
+    # Sphere centres in the body frame, touching: the density-based mass and inertia of a
+    # cluster are exact only for contactors that do not overlap.
+    d = radius
+    dumbbell = [[-d, 0, 0], [d, 0, 0]]
+    t = 2 * d / math.sqrt(8 / 3)  # tetrahedron of edge 2d around its centre
+    tetra = [[t * x, t * y, t * z] for x, y, z in
+             [(math.sqrt(8 / 9), 0, -1 / 3), (-math.sqrt(2 / 9), math.sqrt(2 / 3), -1 / 3),
+              (-math.sqrt(2 / 9), -math.sqrt(2 / 3), -1 / 3), (0, 0, 1)]]
+    k = 0
+    for l in range(layers):
+        for j in range(n):
+            for i in range(n):
+                x = -half + (i + 0.5) * pitch + rng.uniform(-0.2, 0.2) * radius
+                y = -half + (j + 0.5) * pitch + rng.uniform(-0.2, 0.2) * radius
+                z = 0.03 + l * pitch
+                kind = dumbbell if (i + j + l) % 2 == 0 else tetra
+                bodies.append({"name": f"{'dumbbell' if kind is dumbbell else 'tetra'}{k}", "material": "grain",
+                               "position": [round(x, 6), round(y, 6), round(z, 6)], "orientation": unit_quaternion(rng),
+                               "contactors": [{"shape": "sphere", "radius": radius, "offset": [round(c, 9) for c in o],
+                                               "group": "grain"} for o in kind]})
+                k += 1
+    return {
+        "format": "moreau-scene/1",
+        "dimension": 3,
+        "time": {"step": 5e-4, "duration": 0.5, "theta": 0.5},
+        "gravity": [0, 0, -9.81],
+        "materials": {"grain": {"density": 2600}},
+        "laws": {"grain_grain": {"type": "coulomb", "friction": 0.4},
+                 "grain_wall": {"type": "coulomb", "friction": 0.3}},
+        "bodies": bodies,
+        "interactions": [{"groups": ["grain", "grain"], "law": "grain_grain"},
+                         {"groups": ["grain", "wall"], "law": "grain_wall"}],
+        "detection": {"broadphase": "grid", "alert": 0.002},
+        "solver": {"type": "nlgs", "tolerance": 1e-4, "max_iterations": 200},
+        "output": {"file": "clusters_3d.h5", "every": 40},
+    }
+
+
 if __name__ == "__main__":
     default = disks_in_box_2d()
     default["output"]["file"] = "default.h5"
     for name, scene in [("disks_in_box_2d.json", disks_in_box_2d()), ("spheres_in_box_3d.json", spheres_in_box_3d()),
-                        ("default.json", default)]:
+                        ("clusters_3d.json", clusters_3d()), ("default.json", default)]:
         (CONFIGS / name).write_text(json.dumps(scene, indent=1) + "\n")
         print("wrote", CONFIGS / name)

@@ -27,6 +27,8 @@ int command_run(const RunArgs& args, std::ostream& out, std::ostream& err) {
       }
     }
     if (args.steps) opt.steps = *args.steps;
+    ProblemExport* exporter = world->contacts ? world->contacts->exporter.get() : nullptr;
+    if (exporter) exporter->prepare();  // before the output: an unusable folder is bad input
     std::unique_ptr<FrameSink> sink = open_output(*world, path, continue_after);
     opt.sink = sink.get();
     if (!args.quiet) {
@@ -41,6 +43,7 @@ int command_run(const RunArgs& args, std::ostream& out, std::ostream& err) {
     }
     out << "wrote " << std::filesystem::absolute(path).string() << " (steps " << sum.first_step << " to "
         << sum.last_step << ", t = " << static_cast<double>(sum.last_step) * world->h << " s)\n";
+    if (exporter) out << exporter->summary() << "\n";
     return 0;
   });
 }

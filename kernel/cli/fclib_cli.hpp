@@ -1,8 +1,11 @@
 #pragma once
-// `moreau fclib solve PROBLEM.hdf5 --solver NAME [--tol X] [--max-iter N] [--solution OUT.hdf5]`
+// `moreau fclib solve PROBLEM.hdf5 --solver NAME [--tol X] [--max-iter N] [--solution OUT.hdf5]
+//                     [--param KEY=VALUE]... [--repeat N]`
+// (DESIGN §3.1; --param and --repeat are extensions for the work-precision benchmark.)
 #include <iosfwd>
 #include <optional>
 #include <string>
+#include <vector>
 
 namespace CLI {
 class App;
@@ -16,6 +19,8 @@ struct FclibSolveArgs {
   std::optional<double> tolerance;
   std::optional<long> max_iterations;
   std::optional<std::string> solution;
+  std::vector<std::string> params;  ///< "KEY=VALUE", VALUE as JSON (or a bare string)
+  long repeat = 1;                  ///< solves timed; `seconds` is their median
 };
 
 void add_fclib_solve_options(CLI::App& cmd, FclibSolveArgs& args);

@@ -75,13 +75,33 @@ void ContactStages::detection_configuration(StepContext& c) {
   bp_.groups = groups;
   bp_.interacts.resize(static_cast<std::size_t>(groups) * groups);
   for (std::size_t i = 0; i < bp_.interacts.size(); ++i) bp_.interacts[i] = law_of[i] >= 0;
+  // Each contactor's world pose: its body's composed with its placement (clusters). An
+  // offset contactor also moves by the body's rotation, |ω| |offset| per unit time.
+  contactor_poses_.resize(7 * n);
+  contactor_sweep_.resize(n);
+  const int nr = d == 2 ? 1 : 3;
   for (std::size_t i = 0; i < n; ++i) {
     const Contactor& ct = contactors[i];
-    Pose p{&poses_[7 * ct.body], &poses_[7 * ct.body + 3]};
+    const double* body = &poses_[7 * ct.body];
+    double* pose = &contactor_poses_[7 * i];
+    contactor_sweep_[i] = sweep_[ct.body];
+    if (ct.placement.identity()) {
+      std::copy(body, body + 7, pose);
+      continue;
+    }
+    compose_pose(d, body, ct.placement, pose);
+    double w2 = 0, o2 = 0;
+    for (int k = 0; k < nr; ++k) w2 += w[nr * ct.body + k] * w[nr * ct.body + k];
+    for (int k = 0; k < 3; ++k) o2 += ct.placement.offset[k] * ct.placement.offset[k];
+    contactor_sweep_[i] += 2 * c.h * std::sqrt(w2 * o2);
+  }
+  for (std::size_t i = 0; i < n; ++i) {
+    const Contactor& ct = contactors[i];
+    Pose p{&contactor_poses_[7 * i], &contactor_poses_[7 * i + 3]};
     ct.shape->bounds(d, p, &bp_.lo[3 * i], &bp_.hi[3 * i]);
     for (int k = 0; k < 3; ++k) {  // grow by half the alert distance each, and by the sweep
-      bp_.lo[3 * i + k] -= alert / 2 + sweep_[ct.body];
-      bp_.hi[3 * i + k] += alert / 2 + sweep_[ct.body];
+      bp_.lo[3 * i + k] -= alert / 2 + contactor_sweep_[i];
+      bp_.hi[3 * i + k] += alert / 2 + contactor_sweep_[i];
     }
     bp_.body[i] = ct.body;
     bp_.group[i] = ct.group;
@@ -102,9 +122,11 @@ void ContactStages::narrow_phase(StepContext& c) {
     const Contactor& f = contactors[first];
     const Contactor& s = contactors[second];
     scratch_.clear();
-    use->detector->detect(d, *f.shape, Pose{&poses_[7 * f.body], &poses_[7 * f.body + 3]}, *s.shape,
-                          Pose{&poses_[7 * s.body], &poses_[7 * s.body + 3]}, alert + sweep_[f.body] + sweep_[s.body],
-                          scratch_);
+    // Contactor poses (body pose ∘ placement); points come back in world coordinates, and
+    // the assembly takes lever arms from the body's centre of mass, its origin.
+    use->detector->detect(d, *f.shape, Pose{&contactor_poses_[7 * first], &contactor_poses_[7 * first + 3]}, *s.shape,
+                          Pose{&contactor_poses_[7 * second], &contactor_poses_[7 * second + 3]},
+                          alert + contactor_sweep_[first] + contactor_sweep_[second], scratch_);
     const int law = law_of[f.group * groups + s.group];
     for (const auto& p : scratch_) contacts_.push_back(Detected{{first, second}, p, law, contact_key(first, second, p.feature)});
   }
@@ -201,7 +223,12 @@ void ContactStages::solve(StepContext& c, const Integrator& integrator) {
         law.normal_shift(LawInput{contacts_[a].point.gap, u0[static_cast<Eigen::Index>(a * d)], c.h});
   }
   assembly_.lend_factor(bodies, problem_.factor);
+  // Export (scene key export_problems) while the factor is still lent: W may have to be
+  // built from it. The warm start is kept first, since the solver overwrites r_.
+  const bool exporting = exporter && exporter->due(c.step + 1);
+  const Eigen::VectorXd warm_start = exporting ? r_ : Eigen::VectorXd();
   report_ = solver->solve(problem_, r_, u_);
+  if (exporting) exporter->write(c.step + 1, static_cast<double>(c.step + 1) * c.h, c.h, problem_, warm_start, r_, report_);
   assembly_.take_back(problem_.factor);
   for (Eigen::Index i = 0; i < r_.size(); ++i)
     if (!std::isfinite(r_[i])) throw RunError("the contact solver returned non-finite impulses at step " + std::to_string(c.step));
@@ -277,6 +304,9 @@ io::ContactFrame ContactStages::frame(int d, double h) const {
 }
 
 void ContactStages::restore(const std::vector<int>& keys, const std::vector<double>& impulses, int d) {
+  // A continuation does not start: the overlaps it finds are the run's own (solver
+  // tolerance), not the scene's, so the start-of-run warning is not given again.
+  initial_overlaps_checked_ = true;
   previous_keys_.clear();
   const std::size_t nc = keys.size() / 3;
   for (std::size_t a = 0; a < nc; ++a) previous_keys_.emplace_back(contact_key(keys[3 * a], keys[3 * a + 1], keys[3 * a + 2]), a);

@@ -2,6 +2,7 @@
 // The contact stages of a step (DESIGN §1): detection configuration, broad phase, narrow
 // phase, warm start, solve, store reactions. Built only for scenes with interactions.
 #include <cstdint>
+#include <memory>
 #include <moreau/broadphase.hpp>
 #include <moreau/detector.hpp>
 #include <moreau/integrator.hpp>
@@ -14,6 +15,8 @@
 
 #include "../io/output_writer.hpp"
 #include "../plugin/owned.hpp"
+#include "placement.hpp"
+#include "problem_export.hpp"
 #include "rigid_assembly.hpp"
 
 namespace moreau::kernel {
@@ -22,6 +25,7 @@ struct Contactor {
   int body = -1;
   int group = -1;
   Owned<Shape> shape;
+  Placement placement;  ///< in the body frame (origin: centre of mass); identity for most
 };
 
 /// A detector for an ordered pair of shape names; `swap`: the detector's first shape is
@@ -45,6 +49,7 @@ class ContactStages {
   Owned<Solver> solver;
   double alert = 0;
   bool stop_on_failure = false;
+  std::unique_ptr<ProblemExport> exporter;  ///< null unless the scene has `export_problems`
 
   void detection_configuration(StepContext& ctx);
   void broad_phase(StepContext& ctx);
@@ -73,6 +78,9 @@ class ContactStages {
 
   std::vector<double> poses_;  ///< per body: position (3) then rotation (4: 2D angle in [0])
   std::vector<double> sweep_;  ///< per body: distance it may travel in the step (m)
+  /// Per contactor: world pose (same layout as poses_) and distance it may travel in the
+  /// step (its body's sweep, plus the rotation of an offset contactor).
+  std::vector<double> contactor_poses_, contactor_sweep_;
   BroadPhaseInput bp_;
   std::vector<std::pair<int, int>> pairs_;
   std::vector<Detected> contacts_;

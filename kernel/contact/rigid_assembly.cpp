@@ -1,6 +1,7 @@
 #include "rigid_assembly.hpp"
 
 #include <algorithm>
+#include <moreau/factor_matrix.hpp>
 
 namespace moreau::kernel {
 
@@ -53,102 +54,22 @@ void RigidAssembly::build(const RigidBodies& bodies, const std::vector<RigidCont
 }
 
 void RigidAssembly::build_W(const RigidBodies& bodies) {
-  const int d = dim_, k = k_;
-  const std::size_t nc = contacts_.size();
-  const auto& contacts = contacts_;
-
-  // W_αβ = Σ over the bodies α and β share of H_α,b M_b⁻¹ H_β,bᵀ, written straight into
-  // compressed rows (a triplet list would hold every contribution of every body, ~10⁶
-  // entries for 10⁴ spheres, and sort them). Fixed bodies (M⁻¹ = 0) couple nothing.
+  // Through the same factored form the solver receives, so there is one assembly.
+  BodyFactor f;
+  f.k = k_;
+  f.body.resize(2 * contacts_.size());
   const std::size_t nb = bodies.com.size() / 3;
   std::vector<char> moves(nb, 0);
   for (std::size_t b = 0; b < nb; ++b) {
-    const double* Mi = &bodies.inverse_mass[b * k * k];
-    moves[b] = !std::all_of(Mi, Mi + k * k, [](double x) { return x == 0.0; });
+    const double* Mi = &bodies.inverse_mass[b * k_ * k_];
+    moves[b] = !std::all_of(Mi, Mi + k_ * k_, [](double x) { return x == 0.0; });
   }
-  // Contacts touching each moving body, as (contact, side), grouped by body (counting sort).
-  std::vector<int> first(nb + 1, 0);
-  for (std::size_t a = 0; a < nc; ++a)
-    for (int side = 0; side < 2; ++side)
-      if (moves[contacts[a].body[side]]) ++first[contacts[a].body[side] + 1];
-  for (std::size_t b = 0; b < nb; ++b) first[b + 1] += first[b];
-  std::vector<std::pair<int, int>> touching(first[nb]);
-  {
-    std::vector<int> fill(first.begin(), first.end() - 1);
-    for (std::size_t a = 0; a < nc; ++a)
-      for (int side = 0; side < 2; ++side)
-        if (moves[contacts[a].body[side]]) touching[fill[contacts[a].body[side]]++] = {static_cast<int>(a), side};
-  }
-  // HM = H_α,s M_b⁻¹ per contact side (d × k).
-  std::vector<double> HM(nc * 2 * d * k, 0.0);
-  for (std::size_t a = 0; a < nc; ++a)
-    for (int side = 0; side < 2; ++side) {
-      const int b = contacts[a].body[side];
-      if (!moves[b]) continue;
-      const double* Ha = &H_[(a * 2 + side) * d * k];
-      const double* Mi = &bodies.inverse_mass[b * k * k];
-      double* out = &HM[(a * 2 + side) * d * k];
-      for (int i = 0; i < d; ++i)
-        for (int j = 0; j < k; ++j) {
-          double s = 0;
-          for (int l = 0; l < k; ++l) s += Ha[i * k + l] * Mi[l * k + j];
-          out[i * k + j] = s;
-        }
-    }
-  // Row block by row block: the neighbour contacts (sorted, merged when two contacts share
-  // both bodies), then their d × d blocks.
-  std::vector<int> row_ptr(nc * d + 1, 0);
-  std::vector<int> cols;
-  std::vector<double> vals;
-  cols.reserve(static_cast<std::size_t>(first[nb]) * 4 * d * d);  // ~ 2 sides × neighbours per body
-  vals.reserve(cols.capacity());
-  std::vector<int> neighbours, slot(nc, -1);
-  std::vector<double> blocks;
-  for (std::size_t a = 0; a < nc; ++a) {
-    neighbours.clear();
-    for (int side = 0; side < 2; ++side) {
-      const int b = contacts[a].body[side];
-      if (!moves[b]) continue;
-      for (int t = first[b]; t < first[b + 1]; ++t)
-        if (slot[touching[t].first] < 0) {
-          slot[touching[t].first] = 0;
-          neighbours.push_back(touching[t].first);
-        }
-    }
-    std::sort(neighbours.begin(), neighbours.end());
-    for (std::size_t n = 0; n < neighbours.size(); ++n) slot[neighbours[n]] = static_cast<int>(n);
-    blocks.assign(neighbours.size() * d * d, 0.0);
-    for (int side = 0; side < 2; ++side) {
-      const int b = contacts[a].body[side];
-      if (!moves[b]) continue;
-      const double* hm = &HM[(a * 2 + side) * d * k];
-      for (int t = first[b]; t < first[b + 1]; ++t) {
-        const auto [c, sc] = touching[t];
-        const double* Hc = &H_[(static_cast<std::size_t>(c) * 2 + sc) * d * k];
-        double* blk = &blocks[static_cast<std::size_t>(slot[c]) * d * d];
-        for (int i = 0; i < d; ++i)
-          for (int j = 0; j < d; ++j) {
-            double s = 0;
-            for (int l = 0; l < k; ++l) s += hm[i * k + l] * Hc[j * k + l];
-            blk[i * d + j] += s;
-          }
-      }
-    }
-    for (int i = 0; i < d; ++i) {
-      for (std::size_t n = 0; n < neighbours.size(); ++n)
-        for (int j = 0; j < d; ++j) {
-          cols.push_back(neighbours[n] * d + j);
-          vals.push_back(blocks[(n * d + i) * d + j]);
-        }
-      row_ptr[a * d + i + 1] = static_cast<int>(cols.size());
-    }
-    for (int c : neighbours) slot[c] = -1;
-  }
-  W_.resize(static_cast<Eigen::Index>(nc * d), static_cast<Eigen::Index>(nc * d));
-  W_.resizeNonZeros(static_cast<Eigen::Index>(vals.size()));
-  std::copy(row_ptr.begin(), row_ptr.end(), W_.outerIndexPtr());
-  std::copy(cols.begin(), cols.end(), W_.innerIndexPtr());
-  std::copy(vals.begin(), vals.end(), W_.valuePtr());
+  for (std::size_t a = 0; a < contacts_.size(); ++a)
+    for (int side = 0; side < 2; ++side) f.body[2 * a + side] = moves[contacts_[a].body[side]] ? contacts_[a].body[side] : -1;
+  f.H.swap(H_);
+  f.inverse_mass = bodies.inverse_mass;
+  W_ = assemble_w(dim_, f);
+  H_.swap(f.H);
 }
 
 Eigen::VectorXd RigidAssembly::local_velocity(const std::vector<double>& v) const {

@@ -34,4 +34,18 @@ Eigen::VectorXd global_velocity(const GlobalProblem& g, const Eigen::VectorXd& r
 void write_solution(const std::string& path, const Eigen::VectorXd& r, const Eigen::VectorXd& u,
                     const Eigen::VectorXd* v);
 
+/// FCLib's /fclib_local/info strings (free text; FCLib readers show them, solvers ignore them).
+struct ProblemInfo {
+  std::string title, description, math_info;
+};
+
+/// Writes a whole local problem: /fclib_local (W in CSR, vectors q and mu, spacedim = p.dim,
+/// info), then, when given, /guesses/1/{r,u} (a starting point, what `read` returns as
+/// guess_r) and /solution/{r,u} (an answer for comparison, which `read` never returns).
+/// u = W r + q is recomputed here. p.W must be the (dim·nc)² matrix, not left empty.
+/// Written to a temporary name in the same folder, then renamed into place: a killed run
+/// leaves no half-written problem.
+void write_local(const std::string& path, const LocalProblem& p, const ProblemInfo& info,
+                 const Eigen::VectorXd* guess_r, const Eigen::VectorXd* solution_r);
+
 }  // namespace moreau::fclib

@@ -21,6 +21,15 @@ void write_doubles(hid_t where, const std::string& name, const double* data, hsi
     check(H5Dwrite(ds.get(), H5T_NATIVE_DOUBLE, H5S_ALL, H5S_ALL, H5P_DEFAULT, data), name);
 }
 
+void write_floats(hid_t where, const std::string& name, const float* data, hsize_t rows, hsize_t cols) {
+  const hsize_t dims[2] = {rows, cols};
+  Id sp = space(H5Screate_simple(cols == 0 ? 1 : 2, dims, nullptr));
+  Id ds = dataset(H5Dcreate2(where, name.c_str(), H5T_IEEE_F32LE, sp.get(), H5P_DEFAULT, H5P_DEFAULT, H5P_DEFAULT));
+  if (!ds) throw RunError("HDF5 write failed: dataset " + name);
+  if (rows * std::max<hsize_t>(cols, 1) > 0)
+    check(H5Dwrite(ds.get(), H5T_NATIVE_FLOAT, H5S_ALL, H5S_ALL, H5P_DEFAULT, data), name);
+}
+
 void write_int8(hid_t where, const std::string& name, const std::vector<signed char>& data) {
   const hsize_t dims[1] = {data.size()};
   Id sp = space(H5Screate_simple(1, dims, nullptr));
@@ -105,6 +114,17 @@ std::vector<double> read_doubles(hid_t where, const std::string& path, std::vect
     throw InputError(path, "cannot read the dataset as numbers", file);
   if (shape) *shape = dims;
   return v;
+}
+
+std::vector<hsize_t> dimensions(hid_t where, const std::string& path) {
+  if (!exists(where, path)) return {};
+  Id ds = dataset(H5Dopen2(where, path.c_str(), H5P_DEFAULT));
+  if (!ds) return {};
+  Id sp = space(H5Dget_space(ds.get()));
+  const int rank = H5Sget_simple_extent_ndims(sp.get());
+  std::vector<hsize_t> dims(std::max(rank, 0));
+  if (rank > 0) H5Sget_simple_extent_dims(sp.get(), dims.data(), nullptr);
+  return dims;
 }
 
 double read_attribute_double(hid_t where, const std::string& name, const std::string& file, const std::string& path) {

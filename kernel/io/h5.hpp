@@ -46,6 +46,8 @@ inline Id plist(hid_t id) { return {id, H5Pclose}; }
 inline void quiet() { H5Eset_auto2(H5E_DEFAULT, nullptr, nullptr); }
 
 void write_doubles(hid_t where, const std::string& name, const double* data, hsize_t rows, hsize_t cols);
+/// float32 on file: for viewer data, where half the size matters more than the digits.
+void write_floats(hid_t where, const std::string& name, const float* data, hsize_t rows, hsize_t cols);
 void write_int8(hid_t where, const std::string& name, const std::vector<signed char>& data);
 void write_int32(hid_t where, const std::string& name, const int* data, hsize_t rows, hsize_t cols);
 void write_strings(hid_t where, const std::string& name, const std::vector<std::string>& strings);
@@ -57,6 +59,8 @@ bool exists(hid_t where, const std::string& path);
 /// Reads a dataset of doubles; `shape` gets its dimensions. Throws InputError on faults.
 std::vector<double> read_doubles(hid_t where, const std::string& path, std::vector<hsize_t>* shape,
                                  const std::string& file);
+/// A dataset's dimensions without reading it (empty if it does not exist).
+std::vector<hsize_t> dimensions(hid_t where, const std::string& path);
 double read_attribute_double(hid_t where, const std::string& name, const std::string& file, const std::string& path);
 std::string read_attribute_string(hid_t where, const std::string& name, const std::string& file, const std::string& path);
 std::vector<std::string> read_strings(hid_t where, const std::string& path, const std::string& file);

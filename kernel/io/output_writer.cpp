@@ -5,6 +5,7 @@
 #include <filesystem>
 #include <moreau/error.hpp>
 
+#include "display_io.hpp"
 #include "h5.hpp"
 #include "xdmf.hpp"
 
@@ -89,7 +90,21 @@ struct OutputWriter::Impl {
     }
   }
 
-  void write_header(hid_t root) const {
+  /// The display meshes never change and can be large (tens of MB for 10⁵ spheres): while
+  /// the run goes on they sit in their own file in the folder, written once and linked from
+  /// OUT.h5 like the frames, so that rewriting the frame list stays cheap.
+  std::string display_file() const { return folder + "/display.h5"; }
+  void write_display_file() const {
+    if (!header.display) return;
+    const std::string part = display_file() + ".part";
+    h5::Id f = create_file(part);
+    if (!f) throw RunError("cannot write " + part);
+    write_display_header(f.get(), *header.display);
+    finish(f, part);
+    publish_file(part, display_file());
+  }
+
+  void write_header(hid_t root, bool gather) const {
     h5::attribute_string(root, "format", "moreau-output/1");
     h5::attribute_long(root, "dimension", header.dimension);
     h5::attribute_double(root, "time_step", header.time_step);
@@ -105,6 +120,41 @@ struct OutputWriter::Impl {
         h5::write_doubles(g.get(), c.name, c.values.data(), bodies, c.components == 1 ? 0 : c.components);
       }
     }
+    g.reset();
+    write_contactors(root);
+    if (!header.display) return;
+    if (gather) {
+      write_display_header(root, *header.display);
+    } else {
+      const std::string link = fs::path(folder).filename().string() + "/display.h5";
+      if (H5Lcreate_external(link.c_str(), "/display", root, "display", H5P_DEFAULT, H5P_DEFAULT) < 0)
+        throw RunError("cannot link /display to " + link);
+    }
+  }
+
+  /// `/contactors`: body, shape, group and placement of each contactor, so that a reader
+  /// can place the shapes of a cluster (world = body pose ∘ placement).
+  void write_contactors(hid_t root) const {
+    const auto& cs = header.contactors;
+    if (cs.empty()) return;
+    const int d = header.dimension;
+    std::vector<int> body;
+    std::vector<std::string> shape, group;
+    std::vector<double> offset, rotation;
+    for (const auto& c : cs) {
+      body.push_back(c.body);
+      shape.push_back(c.shape);
+      group.push_back(c.group);
+      for (int k = 0; k < d; ++k) offset.push_back(c.offset[k]);
+      for (int k = 0; k < (d == 2 ? 1 : 4); ++k) rotation.push_back(c.rotation[k]);
+    }
+    h5::Id g = h5::group(H5Gcreate2(root, "contactors", H5P_DEFAULT, H5P_DEFAULT, H5P_DEFAULT));
+    h5::write_int32(g.get(), "body", body.data(), cs.size(), 0);
+    h5::write_strings(g.get(), "shape", shape);
+    h5::write_strings(g.get(), "group", group);
+    h5::write_doubles(g.get(), "offset", offset.data(), cs.size(), d);
+    if (d == 2) h5::write_doubles(g.get(), "angle", rotation.data(), cs.size(), 0);
+    else h5::write_doubles(g.get(), "orientation", rotation.data(), cs.size(), 4);
   }
 
   /// Writes OUT.h5 anew, with the frames linked (`gather` false) or copied in, and
@@ -114,7 +164,7 @@ struct OutputWriter::Impl {
     const std::string part = path + ".part";
     h5::Id f = create_file(part);
     if (!f) throw RunError("cannot write " + part);
-    write_header(f.get());
+    write_header(f.get(), gather);
     h5::Id g = h5::group(H5Gcreate2(f.get(), "frames", H5P_DEFAULT, H5P_DEFAULT, H5P_DEFAULT));
     for (const auto& fr : frames) {
       const std::string name = frame_name(fr.step);
@@ -135,7 +185,15 @@ struct OutputWriter::Impl {
     list_seconds = std::chrono::duration<double>(last_list - start).count();
   }
 
-  void write_xdmf() { write_xdmf_file(path, header.dimension, frames, bodies); }
+  void write_xdmf() {
+    XdmfDisplay shapes;
+    if (header.display)
+      shapes = {header.display->vertices(), header.display->cell_count(), header.display->cells.size()};
+    // Only the frames OUT.h5 lists: the list is rewritten less often than frames are
+    // written, and a description naming a frame the file lacks fails in ParaView.
+    const std::vector<XdmfFrame> listed_frames(frames.begin(), frames.begin() + static_cast<long>(listed));
+    write_xdmf_file(path, header.dimension, listed_frames, bodies, shapes);
+  }
 };
 
 OutputWriter::OutputWriter(std::unique_ptr<Impl> impl) : impl_(std::move(impl)) {}
@@ -176,6 +234,7 @@ std::unique_ptr<OutputWriter> OutputWriter::create(const std::string& path, cons
   impl->keep_header(state);
   start_folder(path, impl->folder);
   try {
+    impl->write_display_file();
     impl->publish(false);
   } catch (const RunError& e) {
     std::error_code ec;
@@ -201,6 +260,7 @@ std::unique_ptr<OutputWriter> OutputWriter::append(const std::string& path, cons
     std::error_code ec;
     fs::remove(path + ".part", ec);
     fs::create_directory(impl->folder, ec);
+    impl->write_display_file();
     h5::Id frames = h5::group(H5Gopen2(src.get(), "/frames", H5P_DEFAULT));
     if (!frames) throw InputError("/frames", "missing group", path);
     // A gathered file's frames are copied out to the folder; a killed run's are there already.
@@ -221,6 +281,14 @@ std::unique_ptr<OutputWriter> OutputWriter::append(const std::string& path, cons
         std::vector<hsize_t> shape;
         nc = h5::read_doubles(fg.get(), "contacts/gap", &shape, path).size();
       }
+      // The viewer description may only name what the frame holds: it may come from a run
+      // with other output settings, or from before normal_force was written.
+      XdmfFrame listed{step, time, nc};
+      listed.normal_force = h5::exists(fg.get(), "contacts/normal_force");
+      if (impl->header.display) {
+        const auto shape = h5::dimensions(fg.get(), "display/points");
+        listed.display = !shape.empty() && shape[0] == impl->header.display->vertices();
+      }
       fg.reset();
       if (!linked) {
         const std::string part = impl->frame_file(step) + ".part";
@@ -230,7 +298,7 @@ std::unique_ptr<OutputWriter> OutputWriter::append(const std::string& path, cons
         finish(dst, part);
         publish_file(part, impl->frame_file(step));
       }
-      impl->frames.push_back(XdmfFrame{step, time, nc});
+      impl->frames.push_back(listed);
     }
   }
   impl->publish(false);
@@ -267,14 +335,21 @@ void OutputWriter::write_frame(long step, double time, const State& state, long 
       h5::write_doubles(c.get(), "gap", contacts->gap.data(), nc, 0);
       h5::write_doubles(c.get(), "impulse", contacts->impulse.data(), nc, d);
       h5::write_doubles(c.get(), "force", contacts->force.data(), nc, d);
+      // The normal force on its own, for viewers that size lines or glyphs by a scalar.
+      std::vector<double> normal_force(nc);
+      for (std::size_t i = 0; i < nc; ++i) normal_force[i] = contacts->impulse[d * i] / m.header.time_step;
+      h5::write_doubles(c.get(), "normal_force", normal_force.data(), nc, 0);
       h5::write_int8(c.get(), "status", contacts->status);
       h5::write_int32(c.get(), "key", contacts->keys.data(), nc, 3);
     }
+    if (m.header.display) write_display_frame(g.get(), *m.header.display, state);
   }
   finish(f, part);
   publish_file(part, file);
   if (!m.frames.empty() && m.frames.back().step == step) m.frames.pop_back();  // rewritten (last frame)
-  m.frames.push_back(XdmfFrame{step, time, contacts ? contacts->size() : 0});
+  XdmfFrame listed{step, time, contacts ? contacts->size() : 0};
+  listed.display = m.header.display != nullptr;
+  m.frames.push_back(listed);
   // The list costs O(frames) to rewrite: keep it under a tenth of the time between rewrites.
   const auto now = Clock::now();
   if (m.listed == 0 || std::chrono::duration<double>(now - m.last_list).count() >= 10 * m.list_seconds) m.publish(false);

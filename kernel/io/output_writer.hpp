@@ -7,7 +7,8 @@
 // modifies a file that is visible under its final name:
 //  - while the run goes on, each frame is written to its own file in OUT.h5.frames/
 //    (under a temporary name, renamed once closed), and OUT.h5 is a small file holding the
-//    header and, under /frames, external links to the frame files; it is rewritten under a
+//    header and, under /frames, external links to the frame files (and /display, the
+//    constant display meshes, links to OUT.h5.frames/display.h5); it is rewritten under a
 //    temporary name and renamed over the old one (rename is atomic), so a reader sees the
 //    old or the new list, never half of one;
 //  - when the run ends (or stops on an error), the frames are copied into one
@@ -19,18 +20,34 @@
 //
 // Frames are written at stage `output`, after `end_step` swapped the time depths: the
 // step's final values are in Depth::begin.
+#include <array>
 #include <memory>
 #include <moreau/state.hpp>
 #include <optional>
 #include <string>
 #include <vector>
 
+#include "display.hpp"
+
 namespace moreau::io {
+
+/// One contactor of the scene, for readers (`/contactors` of the header): its body, shape
+/// and placement in the body frame of the output (whose origin is the centre of mass).
+struct ContactorInfo {
+  int body = -1;
+  std::string shape, group;
+  std::array<double, 3> offset{0, 0, 0};
+  std::array<double, 4> rotation{1, 0, 0, 0};  ///< 2D: angle in [0]; 3D: unit quaternion w x y z
+};
 
 struct OutputHeader {
   int dimension = 3;
   double time_step = 0;
   std::string scene_text;  ///< the scene JSON, verbatim
+  std::vector<ContactorInfo> contactors;  ///< every contactor, in scene order
+  /// The shapes drawn in the viewer (`/display`, and display/points in every frame); null
+  /// with output `display: "points"`. Shared: it can be large and the writer only reads it.
+  std::shared_ptr<const DisplayMeshes> display;
 };
 
 /// The contacts of a frame (DESIGN §3.3), nc rows each.

@@ -72,6 +72,19 @@ RestartFrame read_restart(const std::string& path, std::optional<long> step, Sta
                                std::to_string(v.size()), path);
     for (int d = 0; d < field.spec().depths; ++d) std::copy(v.begin(), v.end(), field.data(static_cast<Depth>(d)));
   }
+  // Without the previous step's impulses the solver would start cold and end elsewhere
+  // within its tolerance: the continuation would not be bit-identical.
+  const std::string kp = fp + "/contacts/key", ip = fp + "/contacts/impulse";
+  if (h5::exists(f.get(), kp)) {
+    std::vector<hsize_t> ks, is;
+    const auto keys = h5::read_doubles(f.get(), kp, &ks, path);
+    r.contact_impulses = h5::read_doubles(f.get(), ip, &is, path);
+    const std::size_t nc = ks.empty() ? 0 : ks[0];
+    if (ks.size() != 2 || ks[1] != 3) throw InputError(kp, "expected an nc × 3 dataset", path);
+    if (is.size() != 2 || is[0] != nc || static_cast<int>(is[1]) != state.dimension())
+      throw InputError(ip, "expected " + std::to_string(nc) + " × " + std::to_string(state.dimension()) + " impulses", path);
+    r.contact_keys.assign(keys.begin(), keys.end());
+  }
   return r;
 }
 

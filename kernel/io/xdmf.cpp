@@ -23,74 +23,163 @@ std::string frame_path(long step) {
   return buf;
 }
 
+/// An HDF5 array's type as XDMF spells it.
+struct Type {
+  const char* number;
+  int precision;
+};
+constexpr Type f64{"Float", 8}, f32{"Float", 4}, i32{"Int", 4}, i8{"Char", 1};
+
 void item(std::ostream& os, const std::string& file, const std::string& path, std::size_t rows, int cols,
-          const char* type = "Float", int precision = 8) {
+          Type type = f64) {
   os << "<DataItem Dimensions=\"" << rows;
   if (cols > 0) os << " " << cols;
-  os << "\" NumberType=\"" << type << "\" Precision=\"" << precision << "\" Format=\"HDF\">" << file << ":" << path
-     << "</DataItem>";
+  os << "\" NumberType=\"" << type.number << "\" Precision=\"" << type.precision << "\" Format=\"HDF\">" << file
+     << ":" << path << "</DataItem>";
 }
 
 void attribute(std::ostream& os, const char* name, const char* kind, const std::string& file, const std::string& path,
-               std::size_t rows, int cols, const char* type = "Float", int precision = 8) {
-  os << "      <Attribute Name=\"" << name << "\" AttributeType=\"" << kind << "\" Center=\"Node\">";
-  item(os, file, path, rows, cols, type, precision);
+               std::size_t rows, int cols, Type type = f64, const char* center = "Node") {
+  os << "      <Attribute Name=\"" << name << "\" AttributeType=\"" << kind << "\" Center=\"" << center << "\">";
+  item(os, file, path, rows, cols, type);
   os << "</Attribute>\n";
 }
 
-}  // namespace
+void grid_start(std::ostream& os, const char* name, const XdmfFrame& f) {
+  os << "   <Grid Name=\"" << name << " " << f.step << "\" GridType=\"Uniform\">\n      <Time Value=\"" << f.time
+     << "\"/>\n";
+}
 
-void write_xdmf_file(const std::string& h5_path, int d, const std::vector<XdmfFrame>& frames, std::size_t nb) {
-  const std::string file = fs::path(h5_path).filename().string();  // relative: the pair can be moved together
-  std::ostringstream os;
-  os.precision(17);
-  const char* geometry = d == 2 ? "XY" : "XYZ";
-  const char* vec = "Vector";
-  os << "<?xml version=\"1.0\" ?>\n<Xdmf Version=\"3.0\">\n <Domain>\n";
-  os << "  <Grid Name=\"bodies\" GridType=\"Collection\" CollectionType=\"Temporal\">\n";
-  for (const auto& f : frames) {
-    const std::string fp = frame_path(f.step);
-    os << "   <Grid Name=\"bodies " << f.step << "\" GridType=\"Uniform\">\n      <Time Value=\"" << f.time << "\"/>\n";
-    os << "      <Topology TopologyType=\"Polyvertex\" NumberOfElements=\"" << nb << "\" NodesPerElement=\"1\"/>\n";
+struct Writer {
+  std::ostream& os;
+  std::string file;  // the HDF5 file, relative: the pair can be moved together
+  int d;
+  const char* geometry;
+  std::size_t nb;
+
+  /// A frame without contacts still has its grid (so every collection spans the same
+  /// times), with no cells. Its points are the bodies' (any existing array does): an
+  /// empty inline DataItem aborts ParaView's Xdmf3 readers ("'Content' not found").
+  void empty_grid(const XdmfFrame& f) {
+    os << "      <Topology TopologyType=\"Polyvertex\" NumberOfElements=\"0\" NodesPerElement=\"1\"/>\n";
     os << "      <Geometry GeometryType=\"" << geometry << "\">";
-    item(os, file, fp + "/position", nb, d);
+    item(os, file, frame_path(f.step) + "/position", nb, d);
     os << "</Geometry>\n";
-    attribute(os, "velocity", vec, file, fp + "/velocity", nb, d);
-    if (d == 2) {
-      attribute(os, "angle", "Scalar", file, fp + "/angle", nb, 0);
-      attribute(os, "angular_velocity", "Scalar", file, fp + "/angular_velocity", nb, 0);
-    } else {
-      attribute(os, "angular_velocity", vec, file, fp + "/angular_velocity", nb, 3);
-      attribute(os, "orientation", "Matrix", file, fp + "/orientation", nb, 4);
-    }
-    attribute(os, "mass", "Scalar", file, "/bodies/mass", nb, 0);
-    attribute(os, "fixed", "Scalar", file, "/bodies/fixed", nb, 0, "Char", 1);
-    os << "   </Grid>\n";
   }
-  os << "  </Grid>\n";
-  bool any_contacts = false;
-  for (const auto& f : frames) any_contacts |= f.contacts > 0;
-  if (any_contacts) {
-    os << "  <Grid Name=\"contacts\" GridType=\"Collection\" CollectionType=\"Temporal\">\n";
+
+  void bodies(const std::vector<XdmfFrame>& frames) {
+    const char* vec = "Vector";
+    os << "  <Grid Name=\"bodies\" GridType=\"Collection\" CollectionType=\"Temporal\">\n";
     for (const auto& f : frames) {
-      const std::string cp = frame_path(f.step) + "/contacts";
-      os << "   <Grid Name=\"contacts " << f.step << "\" GridType=\"Uniform\">\n      <Time Value=\"" << f.time << "\"/>\n";
-      os << "      <Topology TopologyType=\"Polyvertex\" NumberOfElements=\"" << f.contacts << "\" NodesPerElement=\"1\"/>\n";
-      if (f.contacts > 0) {
-        os << "      <Geometry GeometryType=\"" << geometry << "\">";
-        item(os, file, cp + "/point", f.contacts, d);
-        os << "</Geometry>\n";
-        attribute(os, "normal", vec, file, cp + "/normal", f.contacts, d);
-        attribute(os, "force", vec, file, cp + "/force", f.contacts, d);
-        attribute(os, "gap", "Scalar", file, cp + "/gap", f.contacts, 0);
-        attribute(os, "status", "Scalar", file, cp + "/status", f.contacts, 0, "Char", 1);
+      const std::string fp = frame_path(f.step);
+      grid_start(os, "bodies", f);
+      os << "      <Topology TopologyType=\"Polyvertex\" NumberOfElements=\"" << nb << "\" NodesPerElement=\"1\"/>\n";
+      os << "      <Geometry GeometryType=\"" << geometry << "\">";
+      item(os, file, fp + "/position", nb, d);
+      os << "</Geometry>\n";
+      attribute(os, "velocity", vec, file, fp + "/velocity", nb, d);
+      if (d == 2) {
+        attribute(os, "angle", "Scalar", file, fp + "/angle", nb, 0);
+        attribute(os, "angular_velocity", "Scalar", file, fp + "/angular_velocity", nb, 0);
       } else {
-        os << "      <Geometry GeometryType=\"" << geometry << "\"><DataItem Dimensions=\"0 " << d
-           << "\" Format=\"XML\"></DataItem></Geometry>\n";
+        attribute(os, "angular_velocity", vec, file, fp + "/angular_velocity", nb, 3);
+        attribute(os, "orientation", "Matrix", file, fp + "/orientation", nb, 4);
       }
+      attribute(os, "mass", "Scalar", file, "/bodies/mass", nb, 0);
+      attribute(os, "fixed", "Scalar", file, "/bodies/fixed", nb, 0, i8);
       os << "   </Grid>\n";
     }
     os << "  </Grid>\n";
+  }
+
+  /// Cells (connectivity, body, contactor) from the header; vertices from each frame.
+  void shapes(const std::vector<XdmfFrame>& frames, const XdmfDisplay& m) {
+    os << "  <Grid Name=\"shapes\" GridType=\"Collection\" CollectionType=\"Temporal\">\n";
+    for (const auto& f : frames) {
+      if (!f.display) continue;  // written without display (continued from a "points" run)
+      grid_start(os, "shapes", f);
+      os << "      <Topology TopologyType=\"Mixed\" NumberOfElements=\"" << m.cells << "\">";
+      item(os, file, "/display/cells", m.connectivity, 0, i32);
+      os << "</Topology>\n      <Geometry GeometryType=\"" << geometry << "\">";
+      item(os, file, frame_path(f.step) + "/display/points", m.vertices, d, f32);
+      os << "</Geometry>\n";
+      attribute(os, "body", "Scalar", file, "/display/cell_body", m.cells, 0, i32, "Cell");
+      attribute(os, "contactor", "Scalar", file, "/display/cell_contactor", m.cells, 0, i32, "Cell");
+      os << "   </Grid>\n";
+    }
+    os << "  </Grid>\n";
+  }
+
+  void contacts(const std::vector<XdmfFrame>& frames) {
+    os << "  <Grid Name=\"contacts\" GridType=\"Collection\" CollectionType=\"Temporal\">\n";
+    for (const auto& f : frames) {
+      const std::string cp = frame_path(f.step) + "/contacts";
+      grid_start(os, "contacts", f);
+      if (f.contacts == 0) {
+        empty_grid(f);
+        os << "   </Grid>\n";
+        continue;
+      }
+      const std::size_t nc = f.contacts;
+      os << "      <Topology TopologyType=\"Polyvertex\" NumberOfElements=\"" << nc << "\" NodesPerElement=\"1\"/>\n";
+      os << "      <Geometry GeometryType=\"" << geometry << "\">";
+      item(os, file, cp + "/point", nc, d);
+      os << "</Geometry>\n";
+      attribute(os, "normal", "Vector", file, cp + "/normal", nc, d);
+      attribute(os, "force", "Vector", file, cp + "/force", nc, d);
+      if (f.normal_force) attribute(os, "normal_force", "Scalar", file, cp + "/normal_force", nc, 0);
+      attribute(os, "gap", "Scalar", file, cp + "/gap", nc, 0);
+      attribute(os, "status", "Scalar", file, cp + "/status", nc, 0, i8);
+      os << "   </Grid>\n";
+    }
+    os << "  </Grid>\n";
+  }
+
+  /// Lines between the two bodies of each contact: the geometry is the frame's body
+  /// positions and the connectivity its contacts/bodies, so nothing is written for it.
+  void force_network(const std::vector<XdmfFrame>& frames) {
+    os << "  <Grid Name=\"force_network\" GridType=\"Collection\" CollectionType=\"Temporal\">\n";
+    for (const auto& f : frames) {
+      const std::string fp = frame_path(f.step), cp = fp + "/contacts";
+      grid_start(os, "force_network", f);
+      if (f.contacts == 0) {
+        empty_grid(f);
+        os << "   </Grid>\n";
+        continue;
+      }
+      const std::size_t nc = f.contacts;
+      os << "      <Topology TopologyType=\"Polyline\" NumberOfElements=\"" << nc << "\" NodesPerElement=\"2\">";
+      item(os, file, cp + "/bodies", nc, 2, i32);
+      os << "</Topology>\n      <Geometry GeometryType=\"" << geometry << "\">";
+      item(os, file, fp + "/position", nb, d);
+      os << "</Geometry>\n";
+      if (f.normal_force) attribute(os, "normal_force", "Scalar", file, cp + "/normal_force", nc, 0, f64, "Cell");
+      attribute(os, "force", "Vector", file, cp + "/force", nc, d, f64, "Cell");
+      attribute(os, "status", "Scalar", file, cp + "/status", nc, 0, i8, "Cell");
+      os << "   </Grid>\n";
+    }
+    os << "  </Grid>\n";
+  }
+};
+
+}  // namespace
+
+void write_xdmf_file(const std::string& h5_path, int d, const std::vector<XdmfFrame>& frames, std::size_t nb,
+                     const XdmfDisplay& display) {
+  std::ostringstream os;
+  os.precision(17);
+  Writer w{os, fs::path(h5_path).filename().string(), d, d == 2 ? "XY" : "XYZ", nb};
+  os << "<?xml version=\"1.0\" ?>\n<Xdmf Version=\"3.0\">\n <Domain>\n";
+  w.bodies(frames);
+  bool any_display = false, any_contacts = false;
+  for (const auto& f : frames) {
+    any_display |= f.display;
+    any_contacts |= f.contacts > 0;
+  }
+  if (any_display && display.cells > 0) w.shapes(frames, display);
+  if (any_contacts) {
+    w.contacts(frames);
+    w.force_network(frames);
   }
   os << " </Domain>\n</Xdmf>\n";
 

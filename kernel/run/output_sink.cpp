@@ -3,6 +3,7 @@
 #include <moreau/error.hpp>
 
 #include "../io/output_writer.hpp"
+#include "../contact/contact_stages.hpp"
 #include "../io/restart.hpp"
 
 namespace moreau::kernel {
@@ -25,14 +26,16 @@ class Hdf5Sink : public FrameSink {
 }  // namespace
 
 std::unique_ptr<FrameSink> open_output(const World& world, const std::string& path, std::optional<long> continue_after) {
-  io::OutputHeader header{world.dimension, world.h, world.scene_text};
+  io::OutputHeader header{world.dimension, world.h, world.scene_text, world.contactor_info, world.display};
   if (continue_after)
     return std::make_unique<Hdf5Sink>(io::OutputWriter::append(path, header, world.state, *continue_after));
   return std::make_unique<Hdf5Sink>(io::OutputWriter::create(path, header, world.state));
 }
 
 long load_restart(World& world, const std::string& file, std::optional<long> frame) {
-  return io::read_restart(file, frame, world.state).step;
+  const io::RestartFrame r = io::read_restart(file, frame, world.state);
+  if (world.contacts) world.contacts->restore(r.contact_keys, r.contact_impulses, world.dimension);
+  return r.step;
 }
 
 }  // namespace moreau::kernel

@@ -13,6 +13,7 @@
 #include <vector>
 
 #include "../contact/contact_stages.hpp"
+#include "../io/display.hpp"
 #include "../plugin/owned.hpp"
 #include "../plugin/registry.hpp"
 
@@ -30,6 +31,7 @@ struct Driver {
 struct OutputSettings {
   std::string file;  ///< output HDF5 path ("" = no output)
   long every = 1;    ///< a frame every `every` steps, plus the first and the last
+  bool shapes = true;  ///< `display: "shapes"`: contactors drawn as their shapes (else points only)
 };
 
 struct World {
@@ -51,6 +53,8 @@ struct World {
   std::vector<Owned<Hook>> hooks;
   std::vector<Driver> drivers;
   std::unique_ptr<ContactStages> contacts;  ///< null when the scene has no interactions
+  std::vector<io::ContactorInfo> contactor_info;  ///< every contactor and its placement, for the output header
+  std::shared_ptr<const io::DisplayMeshes> display;  ///< the shapes drawn in the viewer; null: points only
 
   explicit World(int dim = 3) : state(dim) {}
 };

@@ -1,5 +1,7 @@
 #include "builder.hpp"
 
+#include <algorithm>
+#include <array>
 #include <cmath>
 #include <filesystem>
 #include <moreau/error.hpp>
@@ -8,6 +10,8 @@
 #include <map>
 #include <set>
 
+#include "../contact/placement.hpp"
+#include "display_build.hpp"
 #include "json_file.hpp"
 #include "scene_schema.hpp"
 #include "validate.hpp"
@@ -78,6 +82,7 @@ class SceneChecker {
       broadphase_ = plugin_use(Kind::broadphase, detection_["broadphase"], "/detection/broadphase");
       check_detectors();
     }
+    check_export();
 
     if (!errors_.empty()) throw_all();
   }
@@ -94,6 +99,7 @@ class SceneChecker {
     w->gravity = top_["gravity"].is_null() ? std::vector<double>(dim_, 0.0) : top_["gravity"].get<std::vector<double>>();
     w->output.file = output_["file"].get<std::string>();
     w->output.every = output_["every"].get<long>();
+    w->output.shapes = output_["display"] == "shapes";
 
     BuildContext ctx;
     ctx.dimension = dim_;
@@ -122,24 +128,45 @@ class SceneChecker {
       std::map<std::string, int> group_index;
       for (const auto& in : interactions_)
         for (const auto& g : {in.a, in.b}) group_index.emplace(g, static_cast<int>(group_index.size()));
+      const Schema contactor_keys = scene_schema::contactor_kernel_keys(dim_);  // the kernel's, not the shape's
+      std::vector<const Shape*> display_shapes;  // every contactor's, for the viewer's meshes
+      std::vector<Owned<Shape>> undetected;      // shapes no detector keeps, alive until then
       for (std::size_t i = 0; i < bodies_.size(); ++i) {
         const auto& b = bodies_[i];
         std::optional<double> density;
         if (!b.material.empty()) density = materials_.at(b.material);
-        // Shapes: one object per contactor; their mass properties add up.
+        // Shapes: one object per contactor, at its placement; their mass properties add up
+        // (a cluster: parallel-axis theorem in add()).
         std::optional<MassProperties> mass;
+        const std::size_t first_detected = contactors.size(), first_info = w->contactor_info.size();
         for (const auto& c : b.contactors) {
           json params = c.params.json();
-          params.erase("shape");
-          params.erase("group");
+          for (const auto& k : contactor_keys.params()) params.erase(k.name);
           Owned<Shape> shape = reg.create<Shape>(c.name, Params(params, c.pointer), ctx, c.pointer + "/shape");
-          if (shape->has_mass()) mass = add(mass, shape->mass_properties());
+          const Placement place_at = placement(c.params);
+          if (shape->has_mass())
+            mass = add(mass, place_at.identity() ? shape->mass_properties() : place(dim_, shape->mass_properties(), place_at));
           const std::string group = c.params.string("group");
+          w->contactor_info.push_back(io::ContactorInfo{static_cast<int>(i), c.name, group, place_at.offset,
+                                                        dim_ == 2 ? std::array<double, 4>{place_at.angle, 0, 0, 0}
+                                                                  : place_at.orientation});
+          display_shapes.push_back(shape.get());
           if (group_index.count(group))  // contactors of groups no interaction names are never detected
-            contactors.push_back(Contactor{static_cast<int>(i), group_index.at(group), std::move(shape)});
+            contactors.push_back(Contactor{static_cast<int>(i), group_index.at(group), std::move(shape), place_at});
+          else undetected.push_back(std::move(shape));
         }
-        w->model->init_body(w->state, i, b.model.params, mass, density);
+        // The modelization may take the cluster's centre of mass as the body origin: the
+        // contactors stay where the scene put them, so their offsets are re-expressed.
+        const auto origin = w->model->init_body(w->state, i, b.model.params, mass, density);
+        if (origin[0] != 0 || origin[1] != 0 || origin[2] != 0) {
+          for (std::size_t c = first_detected; c < contactors.size(); ++c)
+            for (int k = 0; k < 3; ++k) contactors[c].placement.offset[k] -= origin[k];
+          for (std::size_t c = first_info; c < w->contactor_info.size(); ++c)
+            for (int k = 0; k < 3; ++k) w->contactor_info[c].offset[k] -= origin[k];
+        }
       }
+      if (w->output.shapes) w->display = build_display(w->state, w->contactor_info, display_shapes);
+      undetected.clear();
       if (!interactions_.empty()) build_contacts(*w, reg, ctx, std::move(contactors), group_index);
       for (const auto& d : drivers_) w->drivers.push_back(d);
       if (!w->drivers.empty() || !hooks_.empty()) {
@@ -163,6 +190,21 @@ class SceneChecker {
     PluginUse model;
     std::vector<PluginUse> contactors;
   };
+
+  /// A validated contactor's placement in its body frame (kernel keys, defaults filled in).
+  Placement placement(const Params& c) const {
+    Placement p;
+    const auto o = c.vector("offset");
+    for (int k = 0; k < dim_; ++k) p.offset[k] = o[k];
+    if (dim_ == 2) {
+      p.angle = c.number("angle");
+    } else {
+      const auto q = c.vector("orientation");
+      const double n = std::sqrt(q[0] * q[0] + q[1] * q[1] + q[2] * q[2] + q[3] * q[3]);  // ≈ 1, checked
+      for (int k = 0; k < 4; ++k) p.orientation[k] = q[k] / n;
+    }
+    return p;
+  }
 
   static MassProperties add(const std::optional<MassProperties>& sum, const MassProperties& m) {
     if (!sum) return m;
@@ -209,7 +251,70 @@ class SceneChecker {
     cs->solver = reg.create<Solver>(solver_.name, solver_.params, ctx, solver_.pointer);
     cs->alert = detection_["alert"].get<double>();
     cs->stop_on_failure = stop_on_failure_;
+    if (export_) cs->exporter = std::make_unique<ProblemExport>(export_settings(w, ctx));
     w.contacts = std::move(cs);
+  }
+
+  /// `export_problems` (docs/scene.md): exactly one of `steps` and `every`, steps the run
+  /// reaches, and contacts to export.
+  void check_export() {
+    if (!top_.contains("export_problems") || !top_["export_problems"].is_object()) return;  // a non-object is reported already
+    const std::string ptr = "/export_problems";
+    const std::size_t before = errors_.size();
+    Validation v{dim_, errors_};
+    json e = validate_object(top_["export_problems"], scene_schema::export_problems(), ptr, v);
+    if (!has_interactions())
+      errors_.emplace_back(ptr, "the scene has no interactions, so no contact problems to export");
+    const bool steps = e.contains("steps"), every = e.contains("every");
+    if (steps == every)
+      errors_.emplace_back(ptr, steps ? "give either \"steps\" or \"every\", not both"
+                                      : "missing \"steps\" (a list of steps) or \"every\" (every N-th step)");
+    // The scene's step count, when its time section is sound (its faults are reported there).
+    long last = -1;
+    if (time_.contains("step") && time_["step"].is_number() && time_.contains("duration") && time_["duration"].is_number() &&
+        time_["step"].get<double>() > 0)
+      last = std::llround(time_["duration"].get<double>() / time_["step"].get<double>());
+    std::vector<long> list;
+    if (steps && e["steps"].is_array()) {
+      if (e["steps"].empty()) errors_.emplace_back(ptr + "/steps", "expected at least one step number");
+      for (std::size_t i = 0; i < e["steps"].size(); ++i) {
+        const json& x = e["steps"][i];
+        const std::string ip = ptr + "/steps/" + std::to_string(i);
+        if (!x.is_number_integer() && !x.is_number_unsigned()) {
+          errors_.emplace_back(ip, "expected a step number (an integer >= 1), got " + x.dump());
+        } else if (x.get<long>() < 1) {
+          errors_.emplace_back(ip, "step " + x.dump() + " out of range: steps are counted from 1 (step N ends at t = N h)");
+        } else if (last >= 0 && x.get<long>() > last) {
+          errors_.emplace_back(ip, "step " + x.dump() + " is after the scene's last step " + std::to_string(last) +
+                                       " (round(duration / step))");
+        } else {
+          list.push_back(x.get<long>());
+        }
+      }
+    }
+    if (every && e["every"].is_number_integer() && last >= 0 && e["every"].get<long>() > last)
+      errors_.emplace_back(ptr + "/every", "every " + e["every"].dump() + " exports nothing: the scene has " +
+                                               std::to_string(last) + " steps");
+    if (errors_.size() != before) return;
+    std::sort(list.begin(), list.end());
+    list.erase(std::unique(list.begin(), list.end()), list.end());
+    e["steps"] = list;
+    export_ = e;
+  }
+
+  ProblemExportSettings export_settings(const World& w, const BuildContext& ctx) const {
+    ProblemExportSettings s;
+    s.steps = (*export_)["steps"].get<std::vector<long>>();
+    s.every = export_->value("every", 0L);
+    // Beside the output (--out moves both), so one run's files stay together.
+    s.directory = (fs::path(ctx.output_dir) / (*export_)["directory"].get<std::string>()).lexically_normal().string();
+    s.stem = fs::path(w.scene_file).stem().string();
+    s.min_contacts = (*export_)["min_contacts"].get<long>();
+    s.scene_file = w.scene_file;
+    json solver = solver_.params.json();
+    solver["type"] = solver_.name;
+    s.solver = solver.dump();
+    return s;
   }
 
   [[noreturn]] void fail_now(const std::string& ptr, const std::string& msg) {
@@ -358,10 +463,19 @@ class SceneChecker {
     const RegistryEntry* e = lookup(Kind::shape, use.name, ptr + "/shape");
     if (!e) return use;
     check_dimension(*e, ptr + "/shape");
-    Schema all = scene_schema::contactor_kernel_keys();
+    Schema all = scene_schema::contactor_kernel_keys(dim_);
     all.merge(e->registration.schema);
     Validation v{dim_, errors_};
     use.params = Params(validate_object(c, all, ptr, v), ptr);
+    // A placement's rotation must be a rotation: same tolerance as a body's orientation.
+    const json& q = use.params.json().value("orientation", json());
+    if (dim_ == 3 && q.is_array() && q.size() == 4 && std::all_of(q.begin(), q.end(), [](const json& x) { return x.is_number(); })) {
+      double n2 = 0;
+      for (const auto& x : q) n2 += x.get<double>() * x.get<double>();
+      if (std::fabs(std::sqrt(n2) - 1) > 1e-6)
+        errors_.emplace_back(ptr + "/orientation", "expected a unit quaternion [w, x, y, z], its norm is " +
+                                                       std::to_string(std::sqrt(n2)));
+    }
     return use;
   }
 
@@ -503,6 +617,7 @@ class SceneChecker {
   std::map<std::pair<std::string, std::string>, std::pair<std::string, bool>> detector_uses_;
   bool stop_on_failure_ = false;
   std::vector<PluginUse> forces_, hooks_;
+  std::optional<json> export_;  ///< validated `export_problems`, steps sorted and unique
 };
 
 }  // namespace

@@ -20,6 +20,17 @@ Schema top() {
   s.object("solver", "contact solver: {type, ...}").fallback(nlohmann::json::object());
   s.object("output", "output file and frequency").fallback(nlohmann::json::object());
   s.array("hooks", "hook plugins run at stage boundaries: [{type, ...}]").fallback(nlohmann::json::array());
+  s.object("export_problems", "write the local contact problems of chosen steps as FCLib files").optional();
+  return s;
+}
+
+Schema export_problems() {
+  Schema s;
+  // `steps` or `every`, exactly one (checked by the builder, which names the pointer).
+  s.array("steps", "steps whose problem is written (step N ends at t = N h; its impulses are in output frame N)").optional();
+  s.integer("every", "write the problem of every N-th step").min(1).optional();
+  s.string("directory", "folder of the files, relative to the output file's folder").fallback("problems");
+  s.integer("min_contacts", "steps with fewer contacts write nothing").min(1).fallback(1);
   return s;
 }
 
@@ -36,6 +47,11 @@ Schema output() {
   Schema s;
   s.string("file", "output HDF5 file (relative to the working folder; --out overrides)").fallback("out.h5");
   s.integer("every", "write a frame every N steps (plus the first and the last)").min(1).fallback(1);
+  s.string("display",
+           "what ParaView draws for bodies: \"shapes\" (each contactor's outline or surface; its vertices are "
+           "written every frame) or \"points\" (body positions only, for the largest runs)")
+      .one_of({"shapes", "points"})
+      .fallback("shapes");
   return s;
 }
 
@@ -53,10 +69,16 @@ Schema body_kernel_keys() {
   return s;
 }
 
-Schema contactor_kernel_keys() {
+Schema contactor_kernel_keys(int dim) {
   Schema s;
   s.string("shape", "shape plugin");
   s.string("group", "contactor group, paired in `interactions`").fallback("default");
+  // The placement of the shape in the body frame (clusters: several contactors on a body).
+  s.vector("offset", "position of the shape's origin in the body frame", length::dimension).units("m")
+      .fallback(nlohmann::json(std::vector<double>(static_cast<std::size_t>(dim), 0.0)));
+  if (dim == 2) s.number("angle", "rotation of the shape in the body frame").units("rad").fallback(0.0);
+  else s.vector("orientation", "rotation of the shape in the body frame, unit quaternion w x y z", length::orientation)
+           .fallback({1.0, 0.0, 0.0, 0.0});
   return s;
 }
 

@@ -13,9 +13,10 @@ Schema time();
 Schema output();
 Schema material();
 Schema body_kernel_keys();       ///< name, model, contactors
-Schema contactor_kernel_keys();  ///< shape, group
+Schema contactor_kernel_keys(int dim);  ///< shape, group, placement: offset, angle (2D) / orientation (3D)
 Schema driver();
 Schema interaction();
 Schema detection();
+Schema export_problems();  ///< steps or every, directory, min_contacts
 
 }  // namespace moreau::kernel::scene_schema

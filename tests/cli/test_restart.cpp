@@ -38,6 +38,28 @@ std::string spinning_scene(double duration) {
 })";
 }
 
+/// Three boxes of unequal edges (anisotropic inertia) stacked askew on a plane, with
+/// friction: contacts persist across the restart, so it must carry their warm start.
+std::string box_stack_scene() {
+  std::string bodies = R"({"name": "floor", "fixed": true, "position": [0, 0, 0],
+     "contactors": [{"shape": "plane", "normal": [0, 0, 1], "group": "floor"}]})";
+  for (int i = 0; i < 3; ++i)
+    bodies += R"(, {"name": "box)" + std::to_string(i) + R"(", "material": "wood", "position": [)" +
+              std::to_string(0.03 * i) + ", 0, " + std::to_string(0.05 + 0.1 * i) +
+              R"(], "orientation": [0.9998, 0, 0, 0.02], "contactors": [{"shape": "box", "size": [0.4, 0.2, 0.1], "group": "box"}]})";
+  return R"({
+  "format": "moreau-scene/1",
+  "dimension": 3,
+  "time": {"step": 0.001, "duration": 0.3},
+  "gravity": [0, 0, -9.81],
+  "materials": {"wood": {"density": 700}},
+  "laws": {"rough": {"type": "coulomb", "friction": 0.5}},
+  "bodies": [)" + bodies + R"(],
+  "interactions": [{"groups": ["box", "floor"], "law": "rough"}, {"groups": ["box", "box"], "law": "rough"}],
+  "output": {"file": "out.h5", "every": 50}
+})";
+}
+
 const char* kFields[] = {"position", "velocity", "orientation", "angular_velocity"};
 
 void expect_same_frame(const std::string& a, const std::string& b, const std::string& frame) {
@@ -59,6 +81,23 @@ TEST(Restart, ContinuesBitIdenticallyFromTheLastFrame) {
   Result r = run_moreau({"run", scene.string(), "--restart", "part.h5", "--out", "rest.h5", "--quiet"}, dir);
   ASSERT_EQ(r.code, 0) << r.err;
   expect_same_frame((dir / "full.h5").string(), (dir / "rest.h5").string(), "00000200");
+}
+
+TEST(Restart, WithContactsTheWarmStartIsRestoredAndTheContinuationBitIdentical) {
+  const fs::path dir = scratch_dir("restart_contacts");
+  const fs::path scene = write_file(dir, "scene.json", box_stack_scene());
+  ASSERT_EQ(run_moreau({"run", scene.string(), "--out", "full.h5", "--quiet"}, dir).code, 0);
+  ASSERT_EQ(run_moreau({"run", scene.string(), "--out", "part.h5", "--steps", "150", "--quiet"}, dir).code, 0);
+  ASSERT_FALSE(read_doubles((dir / "part.h5").string(), "/frames/00000150/contacts/impulse").empty());
+  Result r = run_moreau({"run", scene.string(), "--restart", "part.h5", "--out", "rest.h5", "--quiet"}, dir);
+  ASSERT_EQ(r.code, 0) << r.err;
+  EXPECT_EQ(r.err.find("overlap"), std::string::npos) << "no start-of-run overlap warning on a continuation: " << r.err;
+  expect_same_frame((dir / "full.h5").string(), (dir / "rest.h5").string(), "00000300");
+  const auto a = read_doubles((dir / "full.h5").string(), "/frames/00000300/contacts/impulse");
+  const auto b = read_doubles((dir / "rest.h5").string(), "/frames/00000300/contacts/impulse");
+  ASSERT_EQ(a.size(), b.size());
+  ASSERT_FALSE(a.empty());
+  for (std::size_t i = 0; i < a.size(); ++i) EXPECT_EQ(a[i], b[i]) << "impulse[" << i << "] differs";
 }
 
 TEST(Restart, FromAChosenFrameAndIntoTheSameFile) {

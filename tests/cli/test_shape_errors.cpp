@@ -111,3 +111,22 @@ TEST(ShapeErrors, InitialOverlapDeeperThanTheAlertWarnsWithThePairNamed) {
       << r.err;
   EXPECT_EQ(r.err.find("far"), std::string::npos) << r.err;
 }
+
+// Contactor placements (clusters): the offset has d numbers, a 3D rotation is a unit
+// quaternion, and a 2D `angle` is not a 3D key.
+TEST(ShapeErrors, ContactorOffsetOfTheWrongLength) {
+  expect_bad("offset_length", scene(2, R"({"shape": "disk", "radius": 0.1, "offset": [0.1, 0, 0], "group": "g"})"),
+             "at /bodies/0/contactors/0/offset: expected 2 numbers (dimension 2), got 3");
+}
+
+TEST(ShapeErrors, ContactorOrientationNotAUnitQuaternion) {
+  expect_bad("placement_quaternion",
+             scene(3, R"({"shape": "sphere", "radius": 0.1, "group": "g"},
+                        {"shape": "box", "size": [0.1, 0.1, 0.1], "offset": [0.2, 0, 0], "orientation": [1, 1, 0, 0], "group": "g"})"),
+             "at /bodies/0/contactors/1/orientation: expected a unit quaternion [w, x, y, z], its norm is 1.414214");
+}
+
+TEST(ShapeErrors, ContactorAngleIn3D) {
+  expect_bad("placement_angle_3d", scene(3, R"({"shape": "sphere", "radius": 0.1, "angle": 0.5, "group": "g"})"),
+             "at /bodies/0/contactors/0/angle: unknown key \"angle\"");
+}

@@ -153,3 +153,37 @@ TEST(Fclib, NlgsOnTheSharedLocalProblemsReportsAnHonestError) {
     EXPECT_LE(j["error"].get<double>(), 1e-4) << r.out;
   }
 }
+
+TEST(Fclib, SolveRepeatReportsTheRepeatCount) {
+  const std::string path = write_local("repeat.hdf5", "");
+  Result r = run_moreau({"fclib", "solve", path, "--solver", "nlgs", "--tol", "1e-10", "--repeat", "3"});
+  ASSERT_EQ(r.code, 0) << r.err;
+  auto j = nlohmann::json::parse(r.out);
+  EXPECT_EQ(j["repeats"], 3);
+  EXPECT_EQ(j["converged"], true);
+  EXPECT_GE(j["seconds"].get<double>(), 0.0);
+  // Only keys added to DESIGN §3.1's line: the first ones keep their order.
+  EXPECT_EQ(r.out.rfind("{\"problem\":", 0), 0u) << r.out;
+  EXPECT_EQ(run_moreau({"fclib", "solve", path, "--repeat", "0"}).code, 2);
+}
+
+TEST(Fclib, SolveParamSetsSchemaParametersAndRefusesUnknownOnes) {
+  const std::string path = write_local("param.hdf5", "");
+  Result ok = run_moreau({"fclib", "solve", path, "--solver", "nlgs", "--param", "relaxation=0.9", "--param",
+                          "tolerance=1e-9"});
+  ASSERT_EQ(ok.code, 0) << ok.err;
+  EXPECT_DOUBLE_EQ(nlohmann::json::parse(ok.out)["tolerance"].get<double>(), 1e-9);
+  // A value that is not JSON is a string: the schema then checks it like a scene value.
+  Result str = run_moreau({"fclib", "solve", path, "--solver", "nlgs", "--param", "relaxation=fast"});
+  EXPECT_EQ(str.code, 2);
+  EXPECT_NE(str.err.find("/relaxation"), std::string::npos) << str.err;
+
+  Result bad = run_moreau({"fclib", "solve", path, "--solver", "nlgs", "--param", "nonsense=1"});
+  EXPECT_EQ(bad.code, 2);
+  EXPECT_NE(bad.err.find("unknown key \"nonsense\""), std::string::npos) << bad.err;
+  EXPECT_NE(bad.err.find("relaxation"), std::string::npos) << "the valid keys are listed: " << bad.err;
+  EXPECT_EQ(bad.out, "");
+
+  EXPECT_EQ(run_moreau({"fclib", "solve", path, "--solver", "nlgs", "--param", "novalue"}).code, 2);
+  EXPECT_EQ(run_moreau({"fclib", "solve", path, "--param", "tolerance=1e-6", "--tol", "1e-6"}).code, 2);
+}

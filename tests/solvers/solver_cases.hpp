@@ -23,8 +23,24 @@ namespace solver_cases {
 using moreau::LocalProblem;
 using moreau::SolverReport;
 
-/// The registered solver `name` with `params` over its schema's defaults.
-inline std::unique_ptr<moreau::Solver> make(const std::string& name, nlohmann::json params = nlohmann::json::object()) {
+/// The registered solver `spec` with `params` over its schema's defaults. `spec` is a
+/// name or "name:key=value,key=value" (values read as JSON, else as strings), so that every
+/// check below also runs on a variant such as "nlgs:local_solver=desaxce".
+inline std::unique_ptr<moreau::Solver> make(const std::string& spec, nlohmann::json params = nlohmann::json::object()) {
+  const std::string name = spec.substr(0, spec.find(':'));
+  if (name.size() < spec.size()) {
+    std::string rest = spec.substr(name.size() + 1);
+    while (!rest.empty()) {
+      const std::string kv = rest.substr(0, rest.find(','));
+      rest = kv.size() < rest.size() ? rest.substr(kv.size() + 1) : "";
+      const auto eq = kv.find('=');
+      const std::string key = kv.substr(0, eq), value = kv.substr(eq + 1);
+      if (!params.contains(key)) {
+        const nlohmann::json parsed = nlohmann::json::parse(value, nullptr, false);
+        params[key] = parsed.is_discarded() ? nlohmann::json(value) : parsed;
+      }
+    }
+  }
   for (auto& r : moreau::detail::local_registrations())
     if (r.kind == moreau::Kind::solver && r.name == name) {
       std::vector<moreau::InputError> errors;
@@ -33,7 +49,7 @@ inline std::unique_ptr<moreau::Solver> make(const std::string& name, nlohmann::j
       if (!errors.empty()) throw errors.front();
       return moreau_test::create<moreau::Solver>(name, filled, moreau::BuildContext{});
     }
-  throw std::logic_error("no solver " + name + " linked into the test");
+  throw std::logic_error("no solver " + spec + " linked into the test");
 }
 
 inline LocalProblem problem(int d, const std::vector<double>& W, const std::vector<double>& q, const std::vector<double>& mu) {

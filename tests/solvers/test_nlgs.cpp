@@ -13,7 +13,8 @@ namespace {
 std::unique_ptr<moreau::Solver> nlgs(double tol = 1e-12, long max_it = 1000) {
   return moreau_test::create<moreau::Solver>("nlgs",
                                              {{"tolerance", tol}, {"max_iterations", max_it}, {"relaxation", 1.0},
-                                              {"ordering", "given"}, {"seed", 1}, {"check_every", 1}, {"exchange", "w"}},
+                                              {"ordering", "given"}, {"seed", 1}, {"check_every", 1}, {"exchange", "w"},
+                                               {"local_solver", "exact"}, {"local_iterations", 0}, {"local_tolerance", 1e-14}},
                                              moreau::BuildContext{});
 }
 

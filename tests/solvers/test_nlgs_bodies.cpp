@@ -15,7 +15,8 @@ namespace {
 std::unique_ptr<moreau::Solver> nlgs(const std::string& exchange) {
   return moreau_test::create<moreau::Solver>("nlgs",
                                              {{"tolerance", 1e-11}, {"max_iterations", 20000}, {"relaxation", 1.0},
-                                              {"ordering", "given"}, {"seed", 1}, {"check_every", 1}, {"exchange", exchange}},
+                                              {"ordering", "given"}, {"seed", 1}, {"check_every", 1}, {"exchange", exchange},
+                                               {"local_solver", "exact"}, {"local_iterations", 0}, {"local_tolerance", 1e-14}},
                                              moreau::BuildContext{});
 }
 
@@ -113,6 +114,38 @@ TEST(NlgsBodies, WithoutAFactorTheErrorNamesTheOption) {
   }
   // `auto` falls back to W.
   EXPECT_TRUE(nlgs("auto")->solve(P, r, u).converged);
+}
+
+}  // namespace
+
+namespace {
+
+std::unique_ptr<moreau::Solver> auto_solver(long nlgs_sweeps) {
+  return moreau_test::create<moreau::Solver>(
+      "auto",
+      {{"tolerance", 1e-11}, {"max_iterations", 20000}, {"nlgs_sweeps", nlgs_sweeps}, {"stall_sweeps", 10},
+       {"newton_iterations", 100}, {"newton_stall", 20}, {"admm_iterations", 5000}, {"admm_stall", 300}},
+      moreau::BuildContext{});
+}
+
+TEST(AutoFactored, WithoutWSameAnswerAsWithW) {
+  // The time-stepper gives `auto` only the factor (it says it does not read W): its NLGS
+  // stage goes through body velocities, and with nlgs_sweeps = 0 it goes straight to
+  // Newton on the W it assembles itself. Both must reach the answer found with W given.
+  for (int d : {2, 3})
+    for (long sweeps : {200L, 0L}) {
+      const auto full = random_problem(d, 6, 2, d == 2 ? 6 : 5, 11);
+      auto factored = full;
+      factored.W.resize(0, 0);
+      Eigen::VectorXd rw, uw, rf, uf;
+      const auto rep_w = auto_solver(sweeps)->solve(full, rw, uw);
+      const auto rep_f = auto_solver(sweeps)->solve(factored, rf, uf);
+      ASSERT_TRUE(rep_w.converged);
+      ASSERT_TRUE(rep_f.converged) << "dim " << d << ", nlgs_sweeps " << sweeps;
+      EXPECT_NEAR(rep_f.error, moreau::natural_map_error(full, rf), 1e-12);
+      EXPECT_LT((rf - rw).norm(), 1e-7 * (1 + rw.norm()));
+      EXPECT_LT((uf - (full.W * rf + full.q)).norm(), 1e-10 * (1 + full.q.norm()));
+    }
 }
 
 }  // namespace

@@ -2,6 +2,14 @@
 // body's rows from the scene: pose, velocities, mass and inertia (explicit, or from the
 // contactors' geometry and the material density). Gravity and the gyroscopic term are
 // the integrator's, so the bulk stage has nothing to do.
+//
+// The state's position is the centre of mass. When the inertia comes from the contactors
+// (a cluster placed freely in the scene's body frame), the body origin moves to their
+// centre of mass c: position x + R c, velocity v + ω × R c (the same rigid motion), and
+// init_body returns c so that the kernel re-expresses the placements about it. The
+// inertia tensor stays in the scene's body axes, full (the integrator takes all six
+// components), so no principal-axes rotation is needed.
+#include <array>
 #include <cmath>
 #include <moreau/modelization.hpp>
 #include <moreau/rigid_fields.hpp>
@@ -40,8 +48,8 @@ class Rigid : public Modelization {
     return s;
   }
 
-  void init_body(State& st, std::size_t b, const Params& p, const std::optional<MassProperties>& shapes,
-                 std::optional<double> density) override {
+  std::array<double, 3> init_body(State& st, std::size_t b, const Params& p,
+                                  const std::optional<MassProperties>& shapes, std::optional<double> density) override {
     const int d = st.dimension();
     const bool fixed = p.boolean("fixed");
     st.field(R::fixed).row(b)[0] = fixed ? 1.0 : 0.0;
@@ -61,13 +69,18 @@ class Rigid : public Modelization {
       set_both(st.field(R::angular_velocity), b, fixed ? std::vector<double>(3, 0.0) : p.vector("angular_velocity"));
     }
 
-    // A fixed body never moves, so where its centre of mass lies does not matter (floors,
-    // slopes). Tolerance relative to the body's size: centroids are computed, not given.
+    // The origin moves to the contactors' centre of mass when the inertia comes from them.
+    // Not for a fixed body (it never moves: floors, slopes, half-spaces without a centre),
+    // nor with an explicit inertia (the scene then says the origin is the centre of mass).
+    // Below 1e-9 of the body's size the centre is a rounding error of computed centroids:
+    // the origin stays, so symmetric bodies keep exactly the position the scene gives.
+    std::array<double, 3> origin{0, 0, 0};
     const double size = shapes ? std::pow(std::fabs(shapes->volume), 1.0 / d) : 0.0;
-    if (shapes && !fixed &&
-        std::hypot(shapes->center[0], shapes->center[1], shapes->center[2]) > 1e-9 * size)
-      throw p.error("contactors", "the contactors' centre of mass is not at the body origin; place the body origin "
-                                  "at the centre of mass (offset centres of mass are not supported yet)");
+    if (shapes && !fixed && !p.has("inertia") && shapes->volume > 0 &&
+        std::hypot(shapes->center[0], shapes->center[1], d == 3 ? shapes->center[2] : 0.0) > 1e-9 * size) {
+      origin = {shapes->center[0], shapes->center[1], d == 3 ? shapes->center[2] : 0.0};
+      move_origin(st, b, origin);
+    }
 
     // Mass: explicit, or density × volume of the contactors.
     double mass = 0;
@@ -109,12 +122,46 @@ class Rigid : public Modelization {
     } else {
       invert_symmetric(I, inv, p);
     }
+    return origin;
   }
 
   void bulk(StepContext&) override {}
   bool has_bulk() const override { return false; }
 
  private:
+  /// Moves the body origin to the body-frame point c (both depths): x += R c, v += ω × R c.
+  static void move_origin(State& st, std::size_t b, const std::array<double, 3>& c) {
+    const int d = st.dimension();
+    double r[3] = {0, 0, 0}, wxr[3] = {0, 0, 0};
+    if (d == 2) {
+      const double a = st.field(R::angle).row(b)[0], w = st.field(R::angular_velocity).row(b)[0];
+      r[0] = std::cos(a) * c[0] - std::sin(a) * c[1];
+      r[1] = std::sin(a) * c[0] + std::cos(a) * c[1];
+      wxr[0] = -w * r[1];
+      wxr[1] = w * r[0];
+    } else {
+      const auto q = st.field(R::orientation).row(b);
+      const auto w = st.field(R::angular_velocity).row(b);
+      // r = q c q*: t = 2 u × c, r = c + w t + u × t (u the vector part).
+      const double u[3] = {q[1], q[2], q[3]};
+      const double t[3] = {2 * (u[1] * c[2] - u[2] * c[1]), 2 * (u[2] * c[0] - u[0] * c[2]), 2 * (u[0] * c[1] - u[1] * c[0])};
+      r[0] = c[0] + q[0] * t[0] + u[1] * t[2] - u[2] * t[1];
+      r[1] = c[1] + q[0] * t[1] + u[2] * t[0] - u[0] * t[2];
+      r[2] = c[2] + q[0] * t[2] + u[0] * t[1] - u[1] * t[0];
+      wxr[0] = w[1] * r[2] - w[2] * r[1];
+      wxr[1] = w[2] * r[0] - w[0] * r[2];
+      wxr[2] = w[0] * r[1] - w[1] * r[0];
+    }
+    for (Depth dp : {Depth::begin, Depth::end}) {
+      auto x = st.field(R::position).row(b, dp);
+      auto v = st.field(R::velocity).row(b, dp);
+      for (int k = 0; k < d; ++k) {
+        x[k] += r[k];
+        v[k] += wxr[k];
+      }
+    }
+  }
+
   static void set_both(Field& f, std::size_t b, const std::vector<double>& v) {
     for (Depth dp : {Depth::begin, Depth::end}) {
       auto row = f.row(b, dp);

@@ -2,6 +2,7 @@
 // axes, centred on the body origin.
 #include <algorithm>
 #include <convex.hpp>
+#include <display.hpp>
 #include <moreau/shape.hpp>
 
 namespace {
@@ -45,6 +46,8 @@ class Box : public Shape {
       hi[k] = p.position[k] + e;
     }
   }
+  /// The 8 corners and 6 faces, as the detectors see the box.
+  DisplayMesh display_mesh(double) const override { return geom::polyhedron_display(geom::box_geometry_as_convex(g_)); }
 
  private:
   std::vector<double> g_;

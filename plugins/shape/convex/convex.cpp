@@ -2,6 +2,7 @@
 // it. The hull is computed once at build time (O(n⁴): up to 64 vertices).
 #include <algorithm>
 #include <convex.hpp>
+#include <display.hpp>
 #include <moreau/shape.hpp>
 #include <stdexcept>
 
@@ -62,6 +63,8 @@ class Convex : public Shape {
       for (int k = 0; k < 3; ++k) lo[k] = std::min(lo[k], x[k]), hi[k] = std::max(hi[k], x[k]);
     }
   }
+  /// The hull computed at build time: its corners and (merged, flat) faces.
+  DisplayMesh display_mesh(double) const override { return geom::polyhedron_display(b_.geometry); }
 
  private:
   Built b_;

@@ -32,6 +32,19 @@ class Disk : public Shape {
     }
     lo[2] = hi[2] = 0;
   }
+  /// A regular 24-gon with its vertices on the circle (the first on the body x axis, so
+  /// the drawing shows the disk's rotation).
+  DisplayMesh display_mesh(double) const override {
+    constexpr int n = 24;
+    DisplayMesh m;
+    for (int i = 0; i < n; ++i) {
+      const double a = 2 * std::numbers::pi * i / n;
+      m.points.insert(m.points.end(), {g_[0] * std::cos(a), g_[0] * std::sin(a), 0.0});
+      m.indices.push_back(i);
+    }
+    m.sizes.push_back(n);
+    return m;
+  }
 
  private:
   std::vector<double> g_;

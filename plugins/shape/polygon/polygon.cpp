@@ -2,6 +2,7 @@
 // turning direction; stored counter-clockwise). Blocks, bricks, grains of any outline.
 #include <algorithm>
 #include <convex.hpp>
+#include <display.hpp>
 #include <moreau/shape.hpp>
 #include <stdexcept>
 
@@ -54,6 +55,9 @@ class Polygon : public Shape {
       lo[1] = std::min(lo[1], q.y), hi[1] = std::max(hi[1], q.y);
     }
     lo[2] = hi[2] = 0;
+  }
+  DisplayMesh display_mesh(double) const override {
+    return geom::outline_display(std::vector<double>(g_.begin() + 1, g_.end()));
   }
 
  private:

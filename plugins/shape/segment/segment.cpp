@@ -40,6 +40,26 @@ class Segment : public Shape {
     hi[1] = p.position[1] + std::fabs(hy) + r;
     lo[2] = hi[2] = 0;
   }
+  /// The stadium outline: the right half circle, then the left one (12 steps each),
+  /// counter-clockwise; the straight sides join them.
+  DisplayMesh display_mesh(double) const override {
+    constexpr int steps = 12;
+    const double h = g_[0] / 2, r = g_[1] / 2, pi = std::numbers::pi;
+    DisplayMesh m;
+    for (int side = 0; side < 2; ++side) {
+      const double cx = side == 0 ? h : -h;
+      // A zero-length segment (a disk): the arcs meet, so each stops before the other's start.
+      const int last = h > 0 ? steps : steps - 1;
+      for (int i = 0; i <= last; ++i) {
+        const double a = -pi / 2 + pi * side + pi * i / steps;
+        m.points.insert(m.points.end(), {cx + r * std::cos(a), r * std::sin(a), 0.0});
+      }
+    }
+    const int n = static_cast<int>(m.points.size() / 3);
+    for (int i = 0; i < n; ++i) m.indices.push_back(i);
+    m.sizes.push_back(n);
+    return m;
+  }
 
  private:
   std::vector<double> g_;

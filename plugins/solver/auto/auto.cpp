@@ -8,14 +8,19 @@
 // did not improve the error. Every stage starts from the best iterate seen, and the one
 // returned is the best; `iterations` counts all of them (sweeps, Newton and ADMM steps).
 // Stopping test: the DESIGN §1 error, recomputed from r.
+// From the time-stepper (factored W present), the NLGS stage goes through body velocities
+// (nlgs_body_sweep.hpp) and W is assembled only if the later stages are needed, so easy
+// steps never pay for it.
 #include <algorithm>
 #include <cmath>
 #include <moreau/contact_error.hpp>
+#include <moreau/factor_matrix.hpp>
 #include <moreau/solver.hpp>
 #include <vector>
 
 #include "admm_core.hpp"
 #include "newton_core.hpp"
+#include "nlgs_body_sweep.hpp"
 #include "nlgs_sweep.hpp"
 
 namespace {
@@ -42,6 +47,8 @@ class Auto : public Solver {
         stall_sweeps_(p.integer("stall_sweeps")), newton_it_(p.integer("newton_iterations")),
         newton_stall_(p.integer("newton_stall")), admm_it_(p.integer("admm_iterations")), admm_stall_(p.integer("admm_stall")) {}
 
+  bool reads_matrix_with_factor() const override { return false; }
+
   SolverReport solve(const LocalProblem& P, Eigen::VectorXd& r, Eigen::VectorXd& u) override {
     const int d = P.dim;
     const Eigen::Index nc = P.contacts(), n = d * nc;
@@ -52,13 +59,21 @@ class Auto : public Solver {
       rep.converged = true;
       return rep;
     }
-    u = P.W * r + P.q;
+    const bool bodies = P.factor.present();
+    if (bodies) body_sweeper_.prepare(P, r);
+    auto velocities = [&](const Eigen::VectorXd& x, Eigen::VectorXd& v) {
+      if (bodies)
+        body_sweeper_.velocities(x, v);
+      else
+        v = P.W * x + P.q;
+    };
+    velocities(r, u);
     double best_err = natural_map_error(P, r, u);
     Eigen::VectorXd best = r;
     long total = 0;
     auto finish = [&]() {
       r = best;
-      u = P.W * r + P.q;
+      velocities(r, u);
       rep.iterations = total;
       rep.error = natural_map_error(P, r, u);
       rep.converged = rep.error <= tol_;
@@ -74,13 +89,18 @@ class Auto : public Solver {
 
     // 1. NLGS sweeps, the error checked every few sweeps.
     const long check = std::max<long>(1, std::min<long>(5, stall_sweeps_));
-    sweeper_.prepare(P);
+    if (!bodies) sweeper_.prepare(P);
+    std::vector<Eigen::Index> given(static_cast<std::size_t>(nc));
+    for (Eigen::Index a = 0; a < nc; ++a) given[static_cast<std::size_t>(a)] = a;
     std::vector<double> hist;  // best error at each check
     for (long it = 1; it <= nlgs_sweeps_ && total < max_it_; ++it) {
-      sweeper_.sweep(P, r);
+      if (bodies)
+        body_sweeper_.sweep(r, 1.0, given);
+      else
+        sweeper_.sweep(P, r);
       ++total;
       if (it % check != 0) continue;
-      u = P.W * r + P.q;
+      velocities(r, u);
       const double e = natural_map_error(P, r, u);
       if (!std::isfinite(e)) break;
       keep(r, e);
@@ -91,7 +111,16 @@ class Auto : public Solver {
       if (h > back && best_err > 0.5 * hist[h - 1 - back]) break;  // stagnation
     }
 
-    // 2. Newton and ADMM in turn, each from the best iterate.
+    // 2. Newton and ADMM in turn, each from the best iterate, on W (assembled now if only
+    // the factor was given).
+    LocalProblem assembled;
+    const LocalProblem& Q = P.W.rows() == n || total >= max_it_ ? P : assembled;
+    if (&Q == &assembled) {
+      assembled.dim = d;
+      assembled.W = assemble_w(d, P.factor);
+      assembled.q = P.q;
+      assembled.mu = P.mu;
+    }
     bool newton_next = true;
     int newton_stages = 0;
     int fruitless = 0;  // consecutive stages that did not improve the best error
@@ -108,13 +137,13 @@ class Auto : public Solver {
         // local minimum of its merit), another usually does not.
         static constexpr double scales[] = {3.0, 10.0, 1.0, 30.0, 0.3};
         o.rho_scale = scales[newton_stages++ % 5];
-        s = newton_.solve(P, o, x, v);
+        s = newton_.solve(Q, o, x, v);
       } else {
         admm::Options o;
         o.tolerance = tol_;
         o.max_iterations = budget;
         o.stall_window = admm_stall_;
-        s = admm_.solve(P, o, x, v);
+        s = admm_.solve(Q, o, x, v);
       }
       total += std::max<long>(s.iterations, 1);
       const double before = best_err;
@@ -130,6 +159,7 @@ class Auto : public Solver {
   double tol_;
   long max_it_, nlgs_sweeps_, stall_sweeps_, newton_it_, newton_stall_, admm_it_, admm_stall_;
   nlgs::Sweeper sweeper_;
+  nlgs::BodySweeper body_sweeper_;
   admm::Admm admm_;
   newton::Newton newton_;
 };

@@ -1,5 +1,7 @@
 #include "local_coulomb.hpp"
 
+#include "local_solvers.hpp"
+
 #include <cmath>
 #include <moreau/contact_error.hpp>
 
@@ -153,27 +155,9 @@ void solve_local(int d, const double* A, const double* b, double mu, double* r) 
     }
   }
   if (d == 3 && slide_by_angle(A, b, mu, r)) return;
-  // Fallback: r ← P_K(r − ρ ∘ (A r + b + μ‖u_T‖ e_n)), ρ_k = 1/A_kk.
-  double rho[3];
-  for (int k = 0; k < d; ++k) rho[k] = A[k * d + k] > 0 ? 1 / A[k * d + k] : 1.0;
-  for (int it = 0; it < 200; ++it) {
-    double u[3], y[3], p[3];
-    for (int i = 0; i < d; ++i) {
-      u[i] = b[i];
-      for (int j = 0; j < d; ++j) u[i] += A[i * d + j] * r[j];
-    }
-    const double ut = d == 2 ? std::fabs(u[1]) : std::hypot(u[1], u[2]);
-    y[0] = r[0] - rho[0] * (u[0] + mu * ut);
-    for (int k = 1; k < d; ++k) y[k] = r[k] - rho[k] * u[k];
-    project_on_cone(d, mu, y, p);
-    double change = 0, size = 0;
-    for (int k = 0; k < d; ++k) {
-      change += (p[k] - r[k]) * (p[k] - r[k]);
-      size += p[k] * p[k];
-      r[k] = p[k];
-    }
-    if (change <= 1e-30 * (size + 1e-300)) break;
-  }
+  // Fallback: the projection fixed point with a scalar ρ (local_solvers.hpp); a diagonal ρ
+  // would have another fixed point than the Coulomb law's.
+  solve_local_projection(d, A, b, mu, r, 200, 1e-15);
 }
 
 }  // namespace moreau::nlgs

@@ -1,6 +1,7 @@
 // `nlgs`: non-linear Gauss–Seidel over contacts (Moreau, Jean; LMGC90's default). Each
-// sweep solves every contact's one-contact Coulomb problem exactly (local_coulomb.hpp)
-// with the others' impulses frozen (nlgs_sweep.hpp). The sweep's hot data is packed per
+// sweep solves every contact's one-contact Coulomb problem (by default exactly,
+// local_coulomb.hpp; or by one of the iterative local solvers of local_solvers.hpp) with the
+// others' impulses frozen (nlgs_sweep.hpp). The sweep's hot data is packed per
 // contact: the diagonal blocks of W, contiguous; the off-diagonal part is read row by row from W.
 // With the time-stepper's factored W (`exchange`), contacts see each other through body
 // velocities instead (nlgs_body_sweep.hpp), a fixed cost per contact.
@@ -31,14 +32,30 @@ class Nlgs : public Solver {
                          "(\"bodies\", needs the time-stepper's W = H M⁻¹ Hᵀ), or \"auto\": bodies when available")
         .one_of({"auto", "w", "bodies"})
         .fallback("auto");
+    s.string("local_solver", "one-contact solver: \"exact\" (case enumeration), \"projection\" (projection on the cone "
+                             "iterated to convergence), \"desaxce\" (De Saxcé's prediction/correction), "
+                             "\"alart_curnier\" (local semismooth Newton)")
+        .one_of(nlgs::local_method_names())
+        .fallback("exact");
+    s.integer("local_iterations", "steps per contact visit of the iterative local solvers (0: projection 100, desaxce 1, "
+                                  "alart_curnier 20)").min(0).fallback(0);
+    s.number("local_tolerance", "relative change (projection) or Alart–Curnier residual that ends a contact visit")
+        .gt(0).fallback(1e-14);
     return s;
   }
-  static constexpr const char* doc = "non-linear Gauss-Seidel with exact one-contact Coulomb solves";
+  static constexpr const char* doc = "non-linear Gauss-Seidel over contacts (exact or iterative one-contact Coulomb solves)";
 
   Nlgs(const Params& p, const BuildContext&)
       : tol_(p.number("tolerance")), max_it_(p.integer("max_iterations")), omega_(p.number("relaxation")),
         ordering_(p.string("ordering")), seed_(static_cast<unsigned>(p.integer("seed"))),
-        check_every_(p.integer("check_every")), exchange_(p.string("exchange")) {}
+        check_every_(p.integer("check_every")), exchange_(p.string("exchange")) {
+    nlgs::LocalOptions local;
+    local.method = nlgs::local_method_named(p.string("local_solver"));
+    local.iterations = static_cast<int>(p.integer("local_iterations"));
+    local.tolerance = p.number("local_tolerance");
+    sweeper_.set_local(local);
+    body_sweeper_.set_local(local);
+  }
 
   bool reads_matrix_with_factor() const override { return exchange_ == "w"; }
 

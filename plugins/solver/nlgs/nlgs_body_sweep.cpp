@@ -15,7 +15,7 @@ struct Layout {
 };
 
 template <int D, int K>
-void sweep_impl(const double* rec, const int* body, double* dv, double* r, double omega,
+void sweep_impl(const LocalOptions& local, const double* rec, const int* body, double* dv, double* r, double omega,
                 const std::vector<Eigen::Index>& order) {
   using L = Layout<D, K>;
   for (Eigen::Index a : order) {
@@ -42,7 +42,7 @@ void sweep_impl(const double* rec, const int* body, double* dv, double* r, doubl
       for (int i = 0; i < D; ++i)
         for (int l = 0; l < K; ++l) b[i] += H[i * K + l] * v[l];
     }
-    solve_local(D, R + L::A, b, R[L::mu], rn);
+    solve_local(local, D, R + L::A, b, R[L::mu], rn);
     double dr[D];
     for (int i = 0; i < D; ++i) {
       const double x = omega * rn[i] + (1 - omega) * old[i];
@@ -132,9 +132,9 @@ void BodySweeper::reset_velocities(const Eigen::VectorXd& r) {
 
 void BodySweeper::sweep(Eigen::VectorXd& r, double omega, const std::vector<Eigen::Index>& order) {
   if (d_ == 2)
-    sweep_impl<2, 3>(rec_.data(), body_.data(), dv_.data(), r.data(), omega, order);
+    sweep_impl<2, 3>(local_, rec_.data(), body_.data(), dv_.data(), r.data(), omega, order);
   else
-    sweep_impl<3, 6>(rec_.data(), body_.data(), dv_.data(), r.data(), omega, order);
+    sweep_impl<3, 6>(local_, rec_.data(), body_.data(), dv_.data(), r.data(), omega, order);
 }
 
 void BodySweeper::velocities(const Eigen::VectorXd& r, Eigen::VectorXd& u) {

@@ -11,7 +11,7 @@
 #include <moreau/contact_problem.hpp>
 #include <vector>
 
-#include "local_coulomb.hpp"
+#include "local_solvers.hpp"
 
 namespace moreau::nlgs {
 
@@ -21,6 +21,8 @@ class BodySweeper {
   void prepare(const LocalProblem& P, const Eigen::VectorXd& r);
   /// r_α ← ω local(α) + (1 − ω) r_α for α in `order`, updating Δv as it goes.
   void sweep(Eigen::VectorXd& r, double omega, const std::vector<Eigen::Index>& order);
+  /// The one-contact solver used by the sweeps (exact by default).
+  void set_local(const LocalOptions& o) { local_ = o; }
   /// u = q + H Δv with Δv recomputed from r (increments accumulated over many sweeps
   /// would drift by rounding; the error check must see the true u = W r + q).
   void velocities(const Eigen::VectorXd& r, Eigen::VectorXd& u);
@@ -31,6 +33,7 @@ class BodySweeper {
   std::size_t stride_ = 0;    ///< doubles per record
   std::vector<double> rec_;   ///< per contact: A (d×d), q (d), μ, H₀ H₁ (d×k), G₀ G₁ = M⁻¹Hᵀ (k×d)
   std::vector<int> body_;     ///< per contact, 2 indices into dv_ blocks; −1: the body does not move
+  LocalOptions local_;        ///< the one-contact solver
   std::vector<double> dv_;    ///< moving bodies × k: velocity change due to r, numbered by first use
 };
 

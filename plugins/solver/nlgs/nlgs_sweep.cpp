@@ -1,6 +1,6 @@
 #include "nlgs_sweep.hpp"
 
-#include "local_coulomb.hpp"
+#include "local_solvers.hpp"
 
 namespace moreau::nlgs {
 
@@ -15,7 +15,8 @@ void Sweeper::prepare(const LocalProblem& P) {
 }
 
 namespace {
-inline void one_contact(const LocalProblem& P, const double* blocks, Eigen::Index a, Eigen::VectorXd& r, double omega) {
+inline void one_contact(const LocalProblem& P, const LocalOptions& local, const double* blocks, Eigen::Index a,
+                        Eigen::VectorXd& r, double omega) {
   const int d = P.dim;
   double b[3], rn[3], old[3];
   const double* A = &blocks[a * d * d];
@@ -26,18 +27,18 @@ inline void one_contact(const LocalProblem& P, const double* blocks, Eigen::Inde
     b[i] = s;
     old[i] = rn[i] = r[a * d + i];
   }
-  solve_local(d, A, b, P.mu[a], rn);
+  solve_local(local, d, A, b, P.mu[a], rn);
   for (int i = 0; i < d; ++i) r[a * d + i] = omega * rn[i] + (1 - omega) * old[i];
 }
 }  // namespace
 
 void Sweeper::sweep(const LocalProblem& P, Eigen::VectorXd& r, double omega, const std::vector<Eigen::Index>& order) const {
-  for (Eigen::Index a : order) one_contact(P, blocks_.data(), a, r, omega);
+  for (Eigen::Index a : order) one_contact(P, local_, blocks_.data(), a, r, omega);
 }
 
 void Sweeper::sweep(const LocalProblem& P, Eigen::VectorXd& r, double omega) const {
   const Eigen::Index nc = P.contacts();
-  for (Eigen::Index a = 0; a < nc; ++a) one_contact(P, blocks_.data(), a, r, omega);
+  for (Eigen::Index a = 0; a < nc; ++a) one_contact(P, local_, blocks_.data(), a, r, omega);
 }
 
 }  // namespace moreau::nlgs

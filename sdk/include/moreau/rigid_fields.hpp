@@ -5,8 +5,8 @@
 // modelization, the `theta` integrator, the contact stages and hooks.
 //
 // Conventions: world frame unless said otherwise; `position` and `velocity` are those of
-// the body-frame origin given in the scene, which is also the centre of mass (contactor
-// clusters whose centre of mass is elsewhere are refused for now); `angular_velocity`
+// the body-frame origin, which is the centre of mass (a cluster whose inertia comes from
+// its contactors has its origin moved there when built: docs/scene.md); `angular_velocity`
 // is in the world frame; inertia is in the body frame.
 #include <moreau/state.hpp>
 #include <vector>

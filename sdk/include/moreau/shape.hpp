@@ -1,6 +1,8 @@
 #pragma once
-// A shape (contactor geometry), registered by name. One object per contactor, attached
-// at its body's origin, in the body frame. Detectors read a shape's parameters through
+// A shape (contactor geometry), registered by name. One object per contactor, in its own
+// frame; the kernel places it in the body frame (contactor keys `offset`, `angle` /
+// `orientation`) and hands detectors and bounds() the composed pose, so "body frame" and
+// "body origin" below mean the shape's frame and origin. Detectors read a shape's parameters through
 // `shape_name()` and `geometry()` (documented per shape below), so a third party's
 // detector can pair with any shape without sharing its C++ class.
 //
@@ -20,6 +22,16 @@
 
 namespace moreau {
 
+/// What a viewer draws for a shape, in the shape's own frame; the mechanics never read it.
+/// 2D shapes give their outline as one polygon (z = 0); 3D shapes give their surface as
+/// polygons (triangles or flat faces), counter-clockwise seen from outside.
+struct DisplayMesh {
+  std::vector<double> points;  ///< x y z per vertex, m, shape frame
+  std::vector<int> sizes;      ///< vertex count of each polygon (≥ 3)
+  std::vector<int> indices;    ///< the polygons' vertex indices (into points), concatenated
+  bool empty() const { return sizes.empty(); }
+};
+
 /// A body pose: position (d values) and rotation (2D: angle; 3D: unit quaternion w x y z).
 struct Pose {
   const double* position;
@@ -37,6 +49,13 @@ class MOREAU_API Shape : public Plugin {
   /// World axis-aligned bounding box for a pose (3 values each; 2D leaves z at 0).
   /// Unbounded shapes return infinite extents.
   virtual void bounds(int dim, const Pose& pose, double lo[3], double hi[3]) const = 0;
+  /// The mesh drawn for this shape (output `display: "shapes"`). `extent` (m) is how far
+  /// the scene reaches from the shape's origin at the start: an unbounded shape draws a
+  /// patch that large. Empty (the default): the viewer shows a point at the shape's origin.
+  virtual DisplayMesh display_mesh(double extent) const {
+    (void)extent;
+    return {};
+  }
 };
 
 }  // namespace moreau

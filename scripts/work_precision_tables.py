@@ -1,0 +1,121 @@
+"""Tables of the work-precision benchmark (work_precision.py): table.csv with every run,
+table.md with the table tolerances and the comparison with the Siconos reference figures."""
+import csv
+
+# The reference figures of ../shared/fclib/README.md ("Reference figures (Siconos numerics,
+# same class of 2-core machine)"), copied by hand: problem → tolerance → (Siconos NSGS,
+# best Siconos solver, the best one's seconds). Error there is the DESIGN §1 measure, time
+# the median solve-only wall clock, as here.
+SICONOS = {
+    "fclib-local_problem_test": {
+        1e-4: ("36127 it, 0.43 s", "ADMM: 945 it, 0.008 s", 0.008),
+        1e-8: ("fails (1e5 it, err 7e-6, 1.2 s)", "ADMM: 1190 it, 0.010 s", 0.010),
+    },
+    "faf-Capsules-i97-269": {
+        1e-4: ("109 it, 0.005 s", "VI extra-gradient: 112 it, 0.002 s", 0.002),
+        1e-8: ("2888 it, 0.088 s", "ADMM: 2902 it, 0.055 s", 0.055),
+    },
+    "faf-Box_Stacks-i0035-31-0": {
+        1e-8: ("NSGS on the reduced problem: 0.0008 s", "same", 0.0008),
+    },
+    "spheres-in-a-box-98-i10000-256-10": {
+        1e-8: ("NSGS on the reduced problem fails (err 2.5e-6 after 7.7 s)",
+               "Newton Alart–Curnier on the reduced problem: 0.58 s", 0.58),
+    },
+    "CubeH8": {
+        1e-8: ("0.005 s", "Newton Alart–Curnier: 0.003 s", 0.003),
+    },
+}
+
+COLUMNS = ["problem", "solver", "tolerance", "iterations", "error", "seconds", "converged", "repeats", "note"]
+
+
+def tol_text(t):
+    """1e-08 → "1e-8", 2.5e-06 → "2.5e-6": tolerances as people write them."""
+    mantissa, exponent = f"{t:.6e}".split("e")
+    return f"{mantissa.rstrip('0').rstrip('.')}e{int(exponent)}"
+
+
+def _num(x, fmt):
+    return "" if x is None else format(x, fmt)
+
+
+def write_csv(path, rows):
+    """Every run, intermediate tolerances included, in run order."""
+    with open(path, "w", newline="") as f:
+        w = csv.writer(f, lineterminator="\n")
+        w.writerow(COLUMNS)
+        for r in rows:
+            w.writerow([r["problem"], r["solver"], tol_text(r["tolerance"]), _num(r["iterations"], "d"),
+                        _num(r["error"], ".6e"), _num(r["seconds"], ".6e"), str(r["converged"]).lower(),
+                        r["repeats"], r["note"]])
+
+
+def _secs(s):
+    return "—" if s is None else f"{s:.3g}"
+
+
+def _fastest(rows):
+    ok = [r for r in rows if r["converged"]]
+    return min(ok, key=lambda r: r["seconds"]) if ok else None
+
+
+def _main_table(out, rows, tol, solvers):
+    out += [f"## Tolerance {tol_text(tol)}", "",
+            "| problem | solver | iterations | error | seconds | converged |", "|---|---|---:|---:|---:|---|"]
+    for problem in dict.fromkeys(r["problem"] for r in rows):
+        mine = sorted((r for r in rows if r["problem"] == problem and r["tolerance"] == tol),
+                      key=lambda r: solvers.index(r["solver"]))
+        best = _fastest(mine)
+        for r in mine:
+            secs = _secs(r["seconds"])
+            if r is best:
+                secs = f"**{secs}**"  # the fastest that converged
+            conv = "yes" if r["converged"] else f"no ({r['note']})"
+            err = "—" if r["error"] is None else f"{r['error']:.1e}"
+            it = "—" if r["iterations"] is None else str(r["iterations"])
+            out.append(f"| {problem} | `{r['solver']}` | {it} | {err} | {secs} | {conv} |")
+    out.append("")
+
+
+def _reference_table(out, rows, tol):
+    problems = [p for p in dict.fromkeys(r["problem"] for r in rows) if tol in SICONOS.get(p, {})]
+    if not problems:
+        return
+    out += [f"## Time to {tol_text(tol)} per problem against the Siconos reference", "",
+            "Siconos figures from `../shared/fclib/README.md` (same class of 2-core machine, not this run).", "",
+            "| problem | Siconos NSGS (default) | best Siconos solver | moreau `auto` | fastest moreau solver "
+            "| `auto` / best Siconos |",
+            "|---|---|---|---|---|---|"]
+    for p in problems:
+        nsgs, best_text, best_s = SICONOS[p][tol]
+        mine = [r for r in rows if r["problem"] == p and r["tolerance"] == tol]
+        auto = next((r for r in mine if r["solver"] == "auto"), None)
+        if auto is None:
+            auto_text, ratio = "not run", "—"
+        elif auto["converged"]:
+            auto_text = f"{auto['iterations']} it, {_secs(auto['seconds'])} s"
+            ratio = f"{auto['seconds'] / best_s:.2g}×"
+        else:
+            err = "—" if auto["error"] is None else f"{auto['error']:.1e}"
+            auto_text, ratio = f"fails ({auto['note']}, err {err})", "fails"
+        fastest = _fastest(mine)
+        fast_text = "none converged" if fastest is None else \
+            f"`{fastest['solver']}`: {fastest['iterations']} it, {_secs(fastest['seconds'])} s"
+        out.append(f"| {p} | {nsgs} | {best_text} | {auto_text} | {fast_text} | {ratio} |")
+    out.append("")
+
+
+def write_markdown(path, rows, table_tols, solvers, command):
+    """The table tolerances only; bold: the fastest solver that converged on the problem."""
+    table = [r for r in rows if r["table"]]
+    out = ["# Work-precision benchmark", "", f"Generated by `{command}`.", "",
+           "Error: DESIGN §1 measure recomputed from r. Seconds: solve time from r = 0, the median of "
+           "the repeats where the solver converged, a single solve where it did not. "
+           "Bold: the fastest that converged.", ""]
+    for tol in table_tols:
+        _main_table(out, table, tol, solvers)
+    for tol in table_tols:
+        _reference_table(out, table, tol)
+    with open(path, "w") as f:
+        f.write("\n".join(out))
