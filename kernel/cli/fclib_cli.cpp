@@ -51,7 +51,7 @@ double median(std::vector<double> v) {
 
 void add_fclib_solve_options(CLI::App& cmd, FclibSolveArgs& args) {
   cmd.add_option("problem", args.problem, "FCLib problem file (HDF5, local or global)")->required();
-  cmd.add_option("--solver", args.solver, "solver plugin (default: nlgs)");
+  cmd.add_option("--solver", args.solver, "solver plugin (default: auto, as in scenes)");
   cmd.add_option("--tol", args.tolerance, "tolerance on the DESIGN §1 error")->check(CLI::PositiveNumber);
   cmd.add_option("--max-iter", args.max_iterations, "maximum iterations")->check(CLI::PositiveNumber);
   cmd.add_option("--solution", args.solution, "write /solution/{r,u[,v]} to this file");

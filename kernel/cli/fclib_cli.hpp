@@ -15,7 +15,7 @@ namespace moreau::kernel {
 
 struct FclibSolveArgs {
   std::string problem;
-  std::string solver = "nlgs";  // the default until the automatic solver exists
+  std::string solver = "auto";  // the default everywhere (scenes too)
   std::optional<double> tolerance;
   std::optional<long> max_iterations;
   std::optional<std::string> solution;

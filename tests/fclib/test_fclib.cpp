@@ -145,7 +145,7 @@ TEST(Fclib, SolveCommandPrintsOneJsonLineAndWritesTheSolution) {
 
 TEST(Fclib, NlgsOnTheSharedLocalProblemsReportsAnHonestError) {
   for (const char* f : {"faf-Capsules-i97-269.hdf5", "fclib-local_problem_test.hdf5"}) {
-    Result r = run_moreau({"fclib", "solve", shared(f), "--tol", "1e-4", "--max-iter", "100000"});
+    Result r = run_moreau({"fclib", "solve", shared(f), "--solver", "nlgs", "--tol", "1e-4", "--max-iter", "100000"});
     ASSERT_EQ(r.code, 0) << r.err;
     auto j = nlohmann::json::parse(r.out);
     auto p = moreau::fclib::read(shared(f));

@@ -2,6 +2,7 @@
 
 #include "local_solvers.hpp"
 
+#include <algorithm>
 #include <cmath>
 #include <moreau/contact_error.hpp>
 
@@ -83,6 +84,43 @@ bool slide_by_angle(const double* A, const double* b, double mu, double* r) {
   return false;
 }
 
+/// ‖r − P_K(r − ũ)‖ for u = A r + b: zero exactly at the one-contact Coulomb solution.
+double local_residual(const double* A, const double* b, double mu, const double* r) {
+  double u[3], x[3], p[3];
+  for (int i = 0; i < 3; ++i) u[i] = b[i] + A[3 * i] * r[0] + A[3 * i + 1] * r[1] + A[3 * i + 2] * r[2];
+  x[0] = r[0] - (u[0] + mu * std::hypot(u[1], u[2]));
+  x[1] = r[1] - u[1];
+  x[2] = r[2] - u[2];
+  project_on_cone(3, mu, x, p);
+  return std::sqrt((r[0] - p[0]) * (r[0] - p[0]) + (r[1] - p[1]) * (r[1] - p[1]) + (r[2] - p[2]) * (r[2] - p[2]));
+}
+
+/// 3D sliding by the Alart–Curnier local Newton (quadratic: a few steps where the
+/// direction fixed point below converges linearly on anisotropic blocks), started from the
+/// previous r when it is sliding, else from the slide along −b_T. Its answer is kept only
+/// when the natural map vanishes to rounding, so `exact` stays exact.
+bool slide_by_newton(const double* A, const double* b, double mu, double* r) {
+  double x[3] = {r[0], r[1], r[2]};
+  if (!(x[0] > 0)) {
+    const double len = std::hypot(b[1], b[2]);
+    const double ex = len > 0 ? b[1] / len : 1.0, ey = len > 0 ? b[2] / len : 0.0;
+    const double den = A[0] - mu * (A[1] * ex + A[2] * ey);
+    if (!(den > 0)) return false;
+    x[0] = -b[0] / den;
+    x[1] = -mu * x[0] * ex;
+    x[2] = -mu * x[0] * ey;
+  }
+  solve_local_alart_curnier(3, A, b, mu, x, 12, 1e-15);
+  // Rounding scale of the residual: the sizes of b and of A r.
+  const double scale = std::sqrt(b[0] * b[0] + b[1] * b[1] + b[2] * b[2]) +
+                       (std::fabs(A[0]) + std::fabs(A[4]) + std::fabs(A[8])) * std::sqrt(x[0] * x[0] + x[1] * x[1] + x[2] * x[2]);
+  if (!(local_residual(A, b, mu, x) <= 1e-13 * scale)) return false;
+  r[0] = x[0];
+  r[1] = x[1];
+  r[2] = x[2];
+  return true;
+}
+
 }  // namespace
 
 void solve_local(int d, const double* A, const double* b, double mu, double* r) {
@@ -117,6 +155,7 @@ void solve_local(int d, const double* A, const double* b, double mu, double* r) 
       }
     }
   }
+  if (d == 3 && slide_by_newton(A, b, mu, r)) return;
   if (d == 3) {
     // Sliding along a unit direction e of the tangent plane: r = r_n (1, −μ e), u_n = 0,
     // and e must be the direction of u_T. Fixed point on e from the direction of b_T
