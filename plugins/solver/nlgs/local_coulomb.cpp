@@ -86,13 +86,9 @@ bool slide_by_angle(const double* A, const double* b, double mu, double* r) {
 
 /// ‖r − P_K(r − ũ)‖ for u = A r + b: zero exactly at the one-contact Coulomb solution.
 double local_residual(const double* A, const double* b, double mu, const double* r) {
-  double u[3], x[3], p[3];
+  double u[3];
   for (int i = 0; i < 3; ++i) u[i] = b[i] + A[3 * i] * r[0] + A[3 * i + 1] * r[1] + A[3 * i + 2] * r[2];
-  x[0] = r[0] - (u[0] + mu * std::hypot(u[1], u[2]));
-  x[1] = r[1] - u[1];
-  x[2] = r[2] - u[2];
-  project_on_cone(3, mu, x, p);
-  return std::sqrt((r[0] - p[0]) * (r[0] - p[0]) + (r[1] - p[1]) * (r[1] - p[1]) + (r[2] - p[2]) * (r[2] - p[2]));
+  return std::sqrt(contact_natural_map_squared(3, mu, r, u));
 }
 
 /// 3D sliding by the Alart–Curnier local Newton (quadratic: a few steps where the

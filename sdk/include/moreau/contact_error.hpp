@@ -23,21 +23,24 @@ inline void project_on_cone(int dim, double mu, const double* x, double* out) {
   }
 }
 
+/// ‖r_α − P_Kμ(r_α − ũ_α)‖² of one contact (dim values each, normal first).
+inline double contact_natural_map_squared(int d, double mu, const double* ra, const double* ua) {
+  const double ut = d == 2 ? std::fabs(ua[1]) : std::sqrt(ua[1] * ua[1] + ua[2] * ua[2]);
+  double x[3], px[3];
+  x[0] = ra[0] - (ua[0] + mu * ut);
+  for (int k = 1; k < d; ++k) x[k] = ra[k] - ua[k];
+  project_on_cone(d, mu, x, px);
+  double sum = 0;
+  for (int k = 0; k < d; ++k) sum += (ra[k] - px[k]) * (ra[k] - px[k]);
+  return sum;
+}
+
 /// err(r) for u = W r + q already computed.
 inline double natural_map_error(const LocalProblem& p, const Eigen::VectorXd& r, const Eigen::VectorXd& u) {
   const int d = p.dim;
   double sum = 0;
-  for (Eigen::Index a = 0; a < p.contacts(); ++a) {
-    const double* ra = r.data() + a * d;
-    const double* ua = u.data() + a * d;
-    const double mu = p.mu[a];
-    const double ut = d == 2 ? std::fabs(ua[1]) : std::sqrt(ua[1] * ua[1] + ua[2] * ua[2]);
-    double x[3], px[3];
-    x[0] = ra[0] - (ua[0] + mu * ut);
-    for (int k = 1; k < d; ++k) x[k] = ra[k] - ua[k];
-    project_on_cone(d, mu, x, px);
-    for (int k = 0; k < d; ++k) sum += (ra[k] - px[k]) * (ra[k] - px[k]);
-  }
+  for (Eigen::Index a = 0; a < p.contacts(); ++a)
+    sum += contact_natural_map_squared(d, p.mu[a], r.data() + a * d, u.data() + a * d);
   const double nq = p.q.norm();
   return std::sqrt(sum) / (nq > 0 ? nq : 1.0);
 }
