@@ -2,7 +2,9 @@
 // closed forms, hulls, and the contact manifolds their detectors produce.
 #include <gtest/gtest.h>
 
+#include <algorithm>
 #include <cmath>
+#include <cstdint>
 #include <convex.hpp>
 #include <stdexcept>
 
@@ -159,4 +161,67 @@ TEST(ConvexGeometry, DiskAgainstPolygonCorner) {
   ASSERT_EQ(out.size(), 1u);
   EXPECT_NEAR(out[0].gap, 0.1, 1e-15);
   EXPECT_NEAR(out[0].normal[0], 0.6, 1e-15);
+}
+
+namespace {
+/// Signed distance-like measure of x from a polyhedron's surface: the largest face-plane
+/// offset (0 on the surface, < 0 inside, > 0 outside; exact on the surface).
+double face_plane_excess(const Polyhedron& p, V3 x) {
+  double s = -1e300;
+  for (std::size_t f = 0; f < p.faces.size(); ++f) s = std::max(s, dot(p.normal[f], x) - p.offset[f]);
+  return s;
+}
+}  // namespace
+
+TEST(ConvexGeometry, EveryContactPointSitsBetweenTheTwoSurfacesAtItsGap) {
+  // Random boxes near each other (seeded): each contact's point ± gap/2 along the normal
+  // must land on the surface of each body (to rounding when they overlap). A contact from the wrong pair of edges (for
+  // boxes, 16 edge pairs share each axis) is placed away from where the bodies touch and
+  // fails this.
+  std::uint64_t seed = 12345;
+  auto uniform = [&seed] {
+    seed = seed * 6364136223846793005ULL + 1442695040888963407ULL;
+    return static_cast<double>(seed >> 11) / 9007199254740992.0;
+  };
+  auto random_rotation = [&](double* q) {
+    double n = 0;
+    for (int i = 0; i < 4; ++i) q[i] = uniform() * 2 - 1, n += q[i] * q[i];
+    for (int i = 0; i < 4; ++i) q[i] /= std::sqrt(n);
+  };
+  int contacts = 0, edge_contacts = 0, bad = 0;
+  for (int trial = 0; trial < 4000; ++trial) {
+    double qa[4], qb[4];
+    random_rotation(qa);
+    random_rotation(qb);
+    const std::vector<double> sa{0.5 + uniform(), 0.5 + uniform(), 0.5 + uniform()};
+    const std::vector<double> sb{0.5 + uniform(), 0.5 + uniform(), 0.5 + uniform()};
+    const double pb[3] = {0, 0, 0};
+    const Polyhedron b = polyhedron_at("box", sb, Pose{pb, qb});
+    // A along a random direction at about the distance where the two just touch.
+    double dir[3], n2 = 0;
+    for (double& d : dir) d = uniform() * 2 - 1, n2 += d * d;
+    const double r = 0.3 + 1.2 * uniform();
+    const double pa[3] = {r * dir[0] / std::sqrt(n2), r * dir[1] / std::sqrt(n2), r * dir[2] / std::sqrt(n2)};
+    const Polyhedron a = polyhedron_at("box", sa, Pose{pa, qa});
+    std::vector<ContactPoint> out;
+    polyhedron_polyhedron(a, b, 0.05, out);
+    for (const ContactPoint& c : out) {
+      const V3 p{c.point[0], c.point[1], c.point[2]}, n{c.normal[0], c.normal[1], c.normal[2]};
+      if (c.gap < -0.05) continue;  // deep overlap: the witnesses of SAT need not be unique
+      ++contacts;
+      edge_contacts += (c.feature >> 14) == 2;  // the edge-pair encoding
+      const double on_a = face_plane_excess(a, p + (c.gap / 2) * n), on_b = face_plane_excess(b, p - (c.gap / 2) * n);
+      // Overlapping or touching, the separating-axis witnesses are exact; apart, the
+      // separation along the best axis is only a lower bound of the distance (the closest
+      // features may be a vertex and an edge), so the point may be off by up to the gap.
+      const double tol = c.gap <= 0 ? 1e-9 : c.gap;
+      if (std::fabs(on_a) > tol || std::fabs(on_b) > tol) {
+        if (++bad <= 5)
+          ADD_FAILURE() << "trial " << trial << " feature " << c.feature << " gap " << c.gap << ": point + gap/2 n is "
+                        << on_a << " off the first surface, point − gap/2 n " << on_b << " off the second";
+      }
+    }
+  }
+  EXPECT_EQ(bad, 0) << "of " << contacts << " contacts";
+  EXPECT_GT(edge_contacts, 20) << "the sample exercises edge-edge contacts";
 }

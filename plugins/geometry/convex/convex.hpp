@@ -3,7 +3,9 @@
 // properties, and contact generation between them (DESIGN §1 narrow phase):
 // separating axes give the gap, and when a face is the closest feature the touching
 // faces are clipped against each other so a face contact gets a manifold (2 points in
-// 2D, up to 4 in 3D) and stacks stand.
+// 2D, up to 4 in 3D) and stacks stand. In 3D, vertices within the alert distance in
+// front of a face of the other body are added as predictive points, so a polyhedron
+// pivoting on an edge or a corner is caught before its far side goes through.
 //
 // Conventions of every detector: the normal points from the second shape toward the
 // first; the point is midway between the two surfaces; gap < 0 is overlap.

@@ -1,7 +1,8 @@
 // Convex polyhedra: placement, mass properties, and contacts by separating axes (face
 // normals of both, cross products of edge pairs). A face axis gives a manifold: the
 // incident face of the other body clipped against the reference face's side planes
-// (Sutherland–Hodgman), reduced to 4 points; an edge pair gives one point.
+// (Sutherland–Hodgman), reduced to 4 points; an edge pair gives one point. Vertices
+// within the alert distance in front of a face of the other body add predictive points.
 #include <algorithm>
 #include <limits>
 #include <stdexcept>
@@ -139,6 +140,52 @@ void closest_on_segments(V3 p0, V3 p1, V3 q0, V3 q1, V3& a, V3& b) {
   b = q0 + t * d2;
 }
 
+int edge_feature(int ea, int eb) { return 1 << 15 | ((ea * 64 + eb) & 0x3fff); }
+
+bool known_point(const std::vector<ContactPoint>& out, std::size_t first, V3 x, double same) {
+  for (std::size_t k = first; k < out.size(); ++k)
+    if (norm(V3{out[k].point[0], out[k].point[1], out[k].point[2]} - x) <= same) return true;
+  return false;
+}
+
+/// Predictive vertex–face contacts the separating-axis step does not give: every vertex
+/// of `owner` in front of a face of `other` (0 ≤ distance ≤ alert) whose projection falls
+/// inside that face, so its distance to `other` is exact. The axis step yields only the
+/// closest feature pair; a body pivoting on an edge would otherwise bring its far corner
+/// down with no contact to stop it within the step. Skips the vertices of `skip_face` of
+/// `owner` (-1: none) and points the manifold already has.
+void vertex_face_contacts(const Polyhedron& owner, const Polyhedron& other, bool owner_is_a, int skip_face, double alert,
+                          double same, std::size_t first, std::vector<ContactPoint>& out) {
+  for (std::size_t i = 0; i < owner.v.size(); ++i) {
+    const V3 x = owner.v[i];
+    if (skip_face >= 0 && std::find(owner.faces[skip_face].begin(), owner.faces[skip_face].end(), static_cast<int>(i)) !=
+                              owner.faces[skip_face].end())
+      continue;
+    double s = -inf;
+    int f = 0;
+    for (std::size_t g = 0; g < other.faces.size(); ++g) {
+      const double sg = dot(other.normal[g], x) - other.offset[g];
+      if (sg > s) s = sg, f = static_cast<int>(g);
+    }
+    if (s < 0 || s > alert) continue;
+    const V3 n = other.normal[f], foot = x - s * n;
+    const auto& fv = other.faces[f];
+    bool inside = true;
+    for (std::size_t k = 0; k < fv.size() && inside; ++k)
+      inside = dot(cross(other.v[fv[(k + 1) % fv.size()]] - other.v[fv[k]], n), foot - other.v[fv[k]]) <= 0;
+    if (!inside) continue;
+    const V3 mid = x - (s / 2) * n;
+    if (known_point(out, first, mid, same)) continue;
+    ContactPoint c;
+    const V3 nn = owner_is_a ? n : -n;
+    c.point[0] = mid.x, c.point[1] = mid.y, c.point[2] = mid.z;
+    c.normal[0] = nn.x, c.normal[1] = nn.y, c.normal[2] = nn.z;
+    c.gap = s;
+    c.feature = 3 << 14 | (owner_is_a ? 0 : 1 << 13) | (f & 0x1f) << 8 | (static_cast<int>(i) & 0xff);
+    out.push_back(c);
+  }
+}
+
 }  // namespace
 
 void polyhedron_polyhedron(const Polyhedron& a, const Polyhedron& b, double alert, std::vector<ContactPoint>& out) {
@@ -147,7 +194,15 @@ void polyhedron_polyhedron(const Polyhedron& a, const Polyhedron& b, double aler
   if (sa > alert) return;
   const double sb = face_separation(b, a, fb);
   if (sb > alert) return;
-  // Edge pairs: axis e_a × e_b, oriented from b toward a.
+  double size = 0;
+  for (const V3& x : a.v) size = std::max(size, norm(x - a.centre));
+  for (const V3& x : b.v) size = std::max(size, norm(x - b.centre));
+  // Edge pairs: axis e_a × e_b, oriented from b toward a. A pair counts only if both
+  // edges are the supporting features along its axis (a's edge at a's minimum, b's at
+  // b's maximum), i.e. the pair spans a face of the Minkowski difference: parallel edges
+  // give the same axis (16 pairs per axis for two boxes), and only the supporting pair
+  // touches; the closest points of another pair are elsewhere.
+  const double support_tol = 1e-9 * size;
   double se = -inf;
   int ea = -1, eb = -1;
   V3 axis_best{};
@@ -165,6 +220,8 @@ void polyhedron_polyhedron(const Polyhedron& a, const Polyhedron& b, double aler
       for (const V3& x : a.v) amin = std::min(amin, dot(ax, x));
       for (const V3& x : b.v) bmax = std::max(bmax, dot(ax, x));
       const double s = amin - bmax;
+      const bool supporting = dot(ax, a.v[a.edges[i][0]]) <= amin + support_tol && dot(ax, b.v[b.edges[j][0]]) >= bmax - support_tol;
+      if (!supporting) continue;
       if (s > se) {
         se = s;
         ea = static_cast<int>(i);
@@ -174,11 +231,11 @@ void polyhedron_polyhedron(const Polyhedron& a, const Polyhedron& b, double aler
     }
   }
   if (se > alert) return;
-  double size = 0;
-  for (const V3& x : a.v) size = std::max(size, norm(x - a.centre));
   // Faces are preferred unless an edge pair separates clearly better: face contacts give
   // manifolds, and the bias keeps the choice stable from step to step.
   const double face_best = std::max(sa, sb);
+  const std::size_t first = out.size();
+  const double same = 1e-6 * size;  // two points closer than this are one contact
   if (ea >= 0 && se > face_best + 1e-3 * size) {
     V3 pa, pb;
     closest_on_segments(a.v[a.edges[ea][0]], a.v[a.edges[ea][1]], b.v[b.edges[eb][0]], b.v[b.edges[eb][1]], pa, pb);
@@ -187,8 +244,10 @@ void polyhedron_polyhedron(const Polyhedron& a, const Polyhedron& b, double aler
     c.point[0] = mid.x, c.point[1] = mid.y, c.point[2] = mid.z;
     c.normal[0] = axis_best.x, c.normal[1] = axis_best.y, c.normal[2] = axis_best.z;
     c.gap = se;
-    c.feature = 1 << 15 | ((ea * 64 + eb) & 0x7fff);
+    c.feature = edge_feature(ea, eb);
     out.push_back(c);
+    vertex_face_contacts(a, b, true, -1, alert, same, first, out);
+    vertex_face_contacts(b, a, false, -1, alert, same, first, out);
     return;
   }
   const bool ref_is_b = sb >= sa - 1e-9 * (1 + std::fabs(sa));
@@ -226,7 +285,6 @@ void polyhedron_polyhedron(const Polyhedron& a, const Polyhedron& b, double aler
     }
     poly.swap(next);
   }
-  const std::size_t first = out.size();
   for (const Pt& p : poly) {
     const double s = dot(n, p.x) - ref.offset[rf];
     if (s > alert) continue;
@@ -240,6 +298,10 @@ void polyhedron_polyhedron(const Polyhedron& a, const Polyhedron& b, double aler
     out.push_back(c);
   }
   reduce_manifold(out, first);
+  // The two clipped faces' vertices are the manifold's (its reduction dropped some on
+  // purpose); only the other vertices can add points.
+  vertex_face_contacts(inc, ref, ref_is_b, inc_face, alert, same, first, out);
+  vertex_face_contacts(ref, inc, !ref_is_b, rf, alert, same, first, out);
 }
 
 void polyhedron_plane(const Polyhedron& a, V3 n, V3 p, double alert, std::vector<ContactPoint>& out) {
