@@ -5,8 +5,12 @@ stage and the NLGS sweep throughput (contact updates per second).
 The spheres start as a touching cubic lattice resting on the floor, so every step has
 ~3 contacts per sphere from the start. The run goes `--steps` steps with a frame each step;
 stage times come from `moreau run`'s table, iterations and contact counts from the frames.
+`--friction 0.3,0` compares with a frictionless run (the sweep then packs the normal rows
+and the translations only); `--layout apart` spaces the spheres 1 cm apart and 5 mm above
+the floor, so no step has a contact (only detection runs).
 
     python3 scripts/bench_spheres.py [--moreau build/bin/moreau] [--steps 20] [--large]
+                                     [--friction 0.3,0] [--layout touching,apart]
 """
 import argparse, json, math, os, re, subprocess, sys, tempfile, time
 
@@ -20,10 +24,11 @@ def solver(variant):
     return {"type": "nlgs", "tolerance": 1e-4, "max_iterations": 200, "exchange": variant}
 
 
-def scene(n, steps, path_h5, exchange):
+def scene(n, steps, path_h5, exchange, friction=0.3, layout="touching"):
     side = round(n ** (1 / 3))
     nz = math.ceil(n / (side * side))
-    r, pitch = 0.01, 0.02  # touching: ~3 contacts per sphere
+    r = 0.01
+    pitch, lift = (0.02, 0.0) if layout == "touching" else (0.03, 0.005)  # touching: ~3 contacts per sphere
     bodies = [{"name": "floor", "fixed": True, "position": [0, 0, 0], "contactors": [{"shape": "plane", "group": "wall"}]}]
     L = side * pitch
     for nx, p in (([1, 0, 0], [0, 0, 0]), ([-1, 0, 0], [L, 0, 0]), ([0, 1, 0], [0, 0, 0]), ([0, -1, 0], [0, L, 0])):
@@ -36,12 +41,12 @@ def scene(n, steps, path_h5, exchange):
                 if k == n:
                     break
                 bodies.append({"name": f"s{k}", "material": "grain",
-                               "position": [pitch / 2 + x * pitch, pitch / 2 + y * pitch, r + z * 2 * r],
+                               "position": [pitch / 2 + x * pitch, pitch / 2 + y * pitch, r + lift + z * pitch],
                                "contactors": [{"shape": "sphere", "radius": r, "group": "grain"}]})
                 k += 1
     return {"format": "moreau-scene/1", "dimension": 3, "time": {"step": 5e-4, "duration": steps * 5e-4},
             "gravity": [0, 0, -9.81], "materials": {"grain": {"density": 2600}},
-            "laws": {"rough": {"type": "coulomb", "friction": 0.3}},
+            "laws": {"rough": {"type": "coulomb", "friction": friction}},
             "bodies": bodies,
             "interactions": [{"groups": ["grain", "grain"], "law": "rough"}, {"groups": ["grain", "wall"], "law": "rough"}],
             "solver": solver(exchange),
@@ -55,15 +60,19 @@ def main():
     ap.add_argument("--large", action="store_true", help="also 10^5 spheres")
     ap.add_argument("--exchange", default="w,bodies",
                     help="solvers to compare (comma-separated: w, bodies = nlgs with that exchange; auto)")
+    ap.add_argument("--friction", default="0.3", help="friction coefficients to run (comma-separated)")
+    ap.add_argument("--layout", default="touching", help="touching (contacts from the start) and/or apart (none)")
     a = ap.parse_args()
     sizes = [10_000] + ([100_000] if a.large else [])
-    print(f"{'spheres':>8} {'exchange':>8} {'contacts':>9} {'sweeps/step':>11} {'ms/step':>8} {'detect %':>8} {'solve %':>8} "
-          f"{'update %':>8} {'output %':>8} {'NLGS updates/s':>15}")
-    for n, exchange in [(n, x) for n in sizes for x in a.exchange.split(",")]:
+    print(f"{'spheres':>8} {'layout':>8} {'mu':>4} {'exchange':>8} {'contacts':>9} {'sweeps/step':>11} {'ms/step':>8} "
+          f"{'detect %':>8} {'solve %':>8} {'update %':>8} {'output %':>8} {'NLGS updates/s':>15}")
+    runs = [(n, lay, float(mu), x) for n in sizes for lay in a.layout.split(",") for mu in a.friction.split(",")
+            for x in a.exchange.split(",")]
+    for n, layout, mu, exchange in runs:
         with tempfile.TemporaryDirectory() as d:
             h5 = os.path.join(d, "out.h5")
             sp = os.path.join(d, "scene.json")
-            json.dump(scene(n, a.steps, h5, exchange), open(sp, "w"))
+            json.dump(scene(n, a.steps, h5, exchange, mu, layout), open(sp, "w"))
             out = subprocess.run([a.moreau, "run", sp], capture_output=True, text=True)
             if out.returncode != 0:
                 sys.exit(out.stderr)
@@ -77,10 +86,11 @@ def main():
                 updates = sum(int(fr["solver"].attrs["iterations"]) * len(fr["contacts/gap"]) for fr in frames)
                 contacts = len(frames[-1]["contacts/gap"])
             # A sweep plus the error checks (one every `check_every` = 5 sweeps, each about a sweep).
-            rate = updates / stages["solve"]
-            print(f"{n:>8} {exchange:>8} {contacts:>9} {sweeps / len(frames):>11.1f} {1000 * total / a.steps:>8.2f} "
-                  f"{100 * detect / total:>8.1f} {100 * stages['solve'] / total:>8.1f} {100 * update / total:>8.1f} "
-                  f"{100 * stages.get('output', 0) / total:>8.1f} {rate:>15.3g}")
+            solve = stages.get("solve", 0.0)
+            rate = f"{updates / solve:>15.3g}" if updates and solve > 0 else f"{'-':>15}"
+            print(f"{n:>8} {layout:>8} {mu:>4g} {exchange:>8} {contacts:>9} {sweeps / len(frames):>11.1f} "
+                  f"{1000 * total / a.steps:>8.2f} {100 * detect / total:>8.1f} {100 * solve / total:>8.1f} "
+                  f"{100 * update / total:>8.1f} {100 * stages.get('output', 0) / total:>8.1f} {rate}", flush=True)
 
 
 if __name__ == "__main__":

@@ -167,6 +167,15 @@ void ContactStages::solve(StepContext& c, const Integrator& integrator) {
   const int d = st.dimension();
   const int kk = d == 2 ? 3 : 6;
   const std::size_t nb = st.bodies(), nc = contacts_.size();
+  if (nc == 0 && !(exporter && exporter->due(c.step + 1))) {
+    // Nothing touches: no bodies to gather, no problem, no impulses (store_reactions
+    // tells the integrator so); the step costs the detection only.
+    r_.resize(0);
+    u_.resize(0);
+    report_ = SolverReport{};
+    report_.converged = true;
+    return;
+  }
   RigidBodies bodies;
   bodies.dim = d;
   bodies.com.assign(3 * nb, 0.0);
@@ -238,6 +247,12 @@ void ContactStages::solve(StepContext& c, const Integrator& integrator) {
 }
 
 void ContactStages::store_reactions(StepContext& c) {
+  if (contacts_.empty()) {
+    c.contact_impulses = false;
+    previous_keys_.clear();
+    previous_r_.clear();
+    return;
+  }
   State& st = c.state;
   const int d = st.dimension(), nr = d == 2 ? 1 : 3, kk = d + nr;
   std::vector<double> P;

@@ -188,7 +188,7 @@ TEST(ConvexGeometry, EveryContactPointSitsBetweenTheTwoSurfacesAtItsGap) {
     for (int i = 0; i < 4; ++i) q[i] = uniform() * 2 - 1, n += q[i] * q[i];
     for (int i = 0; i < 4; ++i) q[i] /= std::sqrt(n);
   };
-  int contacts = 0, edge_contacts = 0, bad = 0;
+  int contacts = 0, edge_contacts = 0, vertex_face_contacts = 0, bad = 0;
   for (int trial = 0; trial < 4000; ++trial) {
     double qa[4], qb[4];
     random_rotation(qa);
@@ -214,7 +214,10 @@ TEST(ConvexGeometry, EveryContactPointSitsBetweenTheTwoSurfacesAtItsGap) {
       // Overlapping or touching, the separating-axis witnesses are exact; apart, the
       // separation along the best axis is only a lower bound of the distance (the closest
       // features may be a vertex and an edge), so the point may be off by up to the gap.
-      const double tol = c.gap <= 0 ? 1e-9 : c.gap;
+      // Predictive vertex–face points are exact distances at any gap.
+      const bool vertex_face = (c.feature >> 14) == 3;
+      vertex_face_contacts += vertex_face;
+      const double tol = c.gap <= 0 || vertex_face ? 1e-9 : c.gap;
       if (std::fabs(on_a) > tol || std::fabs(on_b) > tol) {
         if (++bad <= 5)
           ADD_FAILURE() << "trial " << trial << " feature " << c.feature << " gap " << c.gap << ": point + gap/2 n is "
@@ -224,4 +227,5 @@ TEST(ConvexGeometry, EveryContactPointSitsBetweenTheTwoSurfacesAtItsGap) {
   }
   EXPECT_EQ(bad, 0) << "of " << contacts << " contacts";
   EXPECT_GT(edge_contacts, 20) << "the sample exercises edge-edge contacts";
+  EXPECT_GT(vertex_face_contacts, 20) << "and predictive vertex-face points";
 }

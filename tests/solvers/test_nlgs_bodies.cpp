@@ -5,6 +5,7 @@
 
 #include <moreau/contact_error.hpp>
 #include <moreau/error.hpp>
+#include <moreau/factor_matrix.hpp>
 #include <moreau/solver.hpp>
 #include <random>
 
@@ -92,6 +93,45 @@ TEST(NlgsBodies, SameAnswerAsWBlocksIn3D) {
   for (unsigned seed = 1; seed <= 5; ++seed) same_answer_both_ways(3, seed);
 }
 
+/// The problem made frictionless; with `central`, the normal rows no longer turn the
+/// bodies and the inverse masses no longer couple translation and rotation (spheres and
+/// disks), so the sweep packs only the normal row and the translations.
+moreau::LocalProblem frictionless(moreau::LocalProblem P, bool central) {
+  const int d = P.dim, k = P.factor.k;
+  P.mu.setZero();
+  if (central) {
+    for (std::size_t a = 0; a < P.factor.body.size() / 2; ++a)
+      for (int s = 0; s < 2; ++s)
+        for (int l = d; l < k; ++l) P.factor.H[(a * 2 + s) * d * k + l] = 0;  // row 0: the normal
+    for (std::size_t b = 0; b < P.factor.inverse_mass.size() / (k * k); ++b)
+      for (int i = 0; i < k; ++i)
+        for (int j = 0; j < k; ++j)
+          if ((i < d) != (j < d)) P.factor.inverse_mass[b * k * k + i * k + j] = 0;
+  }
+  P.W = moreau::assemble_w(d, P.factor);
+  return P;
+}
+
+TEST(NlgsBodies, FrictionlessPackedRecordsGiveTheSameAnswer) {
+  // μ = 0 keeps the normal rows only; without rotation coupling, the translations only.
+  // Both must give what the W-reading sweep gives, r_t = 0, and the whole u = W r + q.
+  for (int d : {2, 3})
+    for (bool central : {false, true})
+      for (unsigned seed = 1; seed <= 3; ++seed) {
+        const auto P = frictionless(random_problem(d, 6, 2, d == 2 ? 6 : 5, seed), central);
+        Eigen::VectorXd rw, uw, rb = Eigen::VectorXd::Constant(P.q.size(), 0.1), ub;  // r_t ≠ 0 to begin
+        const auto rep_w = nlgs("w")->solve(P, rw, uw);
+        const auto rep_b = nlgs("bodies")->solve(P, rb, ub);
+        ASSERT_TRUE(rep_w.converged) << rep_w.error;
+        ASSERT_TRUE(rep_b.converged) << "dim " << d << " central " << central << " seed " << seed << ": " << rep_b.error;
+        EXPECT_LT((rb - rw).norm(), 1e-7 * (1 + rw.norm()));
+        EXPECT_LT((ub - (P.W * rb + P.q)).norm(), 1e-10 * (1 + P.q.norm())) << "tangential rows of u too";
+        for (Eigen::Index a = 0; a < P.contacts(); ++a)
+          for (int i = 1; i < d; ++i) EXPECT_EQ(rb[a * d + i], 0.0);
+        EXPECT_GT(rw.norm(), 0.1) << "the case closes contacts";
+      }
+}
+
 TEST(NlgsBodies, WarmStartFromTheAnswerStopsAtOnce) {
   const auto P = random_problem(3, 6, 2, 5, 7);
   Eigen::VectorXd r, u;
@@ -120,11 +160,12 @@ TEST(NlgsBodies, WithoutAFactorTheErrorNamesTheOption) {
 
 namespace {
 
-std::unique_ptr<moreau::Solver> auto_solver(long nlgs_sweeps) {
+std::unique_ptr<moreau::Solver> auto_solver(long nlgs_sweeps, long direct_max_contacts = 1000) {
   return moreau_test::create<moreau::Solver>(
       "auto",
       {{"tolerance", 1e-11}, {"max_iterations", 20000}, {"nlgs_sweeps", nlgs_sweeps}, {"stall_sweeps", 10},
-       {"newton_iterations", 100}, {"newton_stall", 20}, {"admm_iterations", 5000}, {"admm_stall", 300}},
+       {"newton_iterations", 100}, {"newton_stall", 20}, {"admm_iterations", 5000}, {"admm_stall", 300},
+       {"direct_max_contacts", direct_max_contacts}, {"apgd_iterations", 500}},
       moreau::BuildContext{});
 }
 
@@ -145,6 +186,26 @@ TEST(AutoFactored, WithoutWSameAnswerAsWithW) {
       EXPECT_NEAR(rep_f.error, moreau::natural_map_error(full, rf), 1e-12);
       EXPECT_LT((rf - rw).norm(), 1e-7 * (1 + rw.norm()));
       EXPECT_LT((uf - (full.W * rf + full.q)).norm(), 1e-10 * (1 + full.q.norm()));
+    }
+}
+
+TEST(AutoFactored, AboveDirectMaxContactsApgdAndNlgsReachTheSameAnswer) {
+  // With direct_max_contacts = 0 every problem counts as large: after the first NLGS
+  // stage, APGD and NLGS alternate (no sparse LU). Stopped NLGS stages early
+  // (nlgs_sweeps = 10) so the later stages do the work; the answer is the one with W.
+  for (int d : {2, 3})
+    for (unsigned seed : {11u, 12u, 13u}) {
+      const auto full = random_problem(d, 6, 2, d == 2 ? 6 : 5, seed);
+      auto factored = full;
+      factored.W.resize(0, 0);
+      Eigen::VectorXd rw, uw, rf, uf;
+      const auto rep_w = auto_solver(200)->solve(full, rw, uw);
+      const auto rep_f = auto_solver(10, 0)->solve(factored, rf, uf);
+      ASSERT_TRUE(rep_w.converged);
+      ASSERT_TRUE(rep_f.converged) << "dim " << d << ", seed " << seed << ": error " << rep_f.error;
+      EXPECT_GT(rep_f.iterations, 10) << "beyond the first NLGS stage";
+      EXPECT_NEAR(rep_f.error, moreau::natural_map_error(full, rf), 1e-12);
+      EXPECT_LT((rf - rw).norm(), 1e-7 * (1 + rw.norm()));
     }
 }
 

@@ -51,8 +51,9 @@ struct Polyhedron {
   std::vector<V3> normal;
   std::vector<double> offset;
   std::vector<std::array<int, 2>> edges;
+  std::vector<std::array<int, 2>> edge_faces;  ///< the two faces meeting at each edge
   V3 centre;  ///< mean of the vertices (inside)
-  void finish();  ///< computes normals, offsets, edges and centre from v and faces
+  void finish();  ///< computes normals, offsets, edges, edge_faces and centre from v and faces
 };
 
 /// Faces of the convex hull of points (counter-clockwise from outside, coplanar faces

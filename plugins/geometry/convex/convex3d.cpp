@@ -1,8 +1,9 @@
 // Convex polyhedra: placement, mass properties, and contacts by separating axes (face
 // normals of both, cross products of edge pairs). A face axis gives a manifold: the
 // incident face of the other body clipped against the reference face's side planes
-// (Sutherland–Hodgman), reduced to 4 points; an edge pair gives one point. Vertices
-// within the alert distance in front of a face of the other body add predictive points.
+// (Sutherland–Hodgman), reduced to 4 points; an edge pair gives one point. Vertices in
+// front of a face, and edges facing edges, of the other body within the alert distance
+// add predictive points.
 #include <algorithm>
 #include <limits>
 #include <stdexcept>
@@ -19,6 +20,7 @@ void Polyhedron::finish() {
   normal.clear();
   offset.clear();
   edges.clear();
+  edge_faces.clear();
   centre = {};
   for (const V3& x : v) centre = centre + x;
   centre = (1.0 / v.size()) * centre;
@@ -32,6 +34,16 @@ void Polyhedron::finish() {
       const int a = f[i], b = f[(i + 1) % f.size()];
       if (a < b) edges.push_back({a, b});  // each edge once (its other face lists it b→a)
     }
+  }
+  for (const auto& e : edges) {
+    std::array<int, 2> two{-1, -1};
+    for (std::size_t f = 0; f < faces.size(); ++f)
+      for (std::size_t i = 0; i < faces[f].size(); ++i) {
+        const int a = faces[f][i], b = faces[f][(i + 1) % faces[f].size()];
+        if (a == e[0] && b == e[1]) two[0] = static_cast<int>(f);
+        if (a == e[1] && b == e[0]) two[1] = static_cast<int>(f);
+      }
+    edge_faces.push_back(two);
   }
 }
 
@@ -148,6 +160,45 @@ bool known_point(const std::vector<ContactPoint>& out, std::size_t first, V3 x, 
   return false;
 }
 
+/// Whether direction m points strictly inside the normal cone of edge e (between the
+/// normals of its two faces): the edge, not a face, is what p shows toward m.
+bool in_edge_cone(const Polyhedron& p, int e, V3 m) {
+  const V3 n1 = p.normal[p.edge_faces[e][0]], n2 = p.normal[p.edge_faces[e][1]];
+  const V3 c = cross(n1, n2);
+  const double eps = 1e-6 * norm(c);
+  return eps > 0 && dot(cross(n1, m), c) > eps && dot(cross(m, n2), c) > eps;
+}
+
+/// Predictive edge–edge contacts the separating-axis step does not give: every pair of
+/// edges whose closest points are inside both, apart by 0 < d ≤ alert along a direction
+/// each edge faces (inside both normal cones). Like the vertex–face points, these catch
+/// an edge coming down while the bodies touch elsewhere.
+void edge_edge_contacts(const Polyhedron& a, const Polyhedron& b, double alert, double same, std::size_t first,
+                        std::vector<ContactPoint>& out) {
+  for (std::size_t i = 0; i < a.edges.size(); ++i) {
+    const V3 a0 = a.v[a.edges[i][0]], da = a.v[a.edges[i][1]] - a0;
+    for (std::size_t j = 0; j < b.edges.size(); ++j) {
+      const V3 b0 = b.v[b.edges[j][0]], db = b.v[b.edges[j][1]] - b0;
+      V3 pa, pb;
+      closest_on_segments(a0, a0 + da, b0, b0 + db, pa, pb);
+      const double d = norm(pa - pb);
+      if (d <= same || d > alert) continue;
+      const V3 n = (1 / d) * (pa - pb);
+      // Inside both edges, the joining segment is square to both (else an end is closest).
+      if (std::fabs(dot(n, da)) > 1e-9 * norm(da) || std::fabs(dot(n, db)) > 1e-9 * norm(db)) continue;
+      if (!in_edge_cone(a, static_cast<int>(i), -n) || !in_edge_cone(b, static_cast<int>(j), n)) continue;
+      const V3 mid = 0.5 * (pa + pb);
+      if (known_point(out, first, mid, same)) continue;
+      ContactPoint c;
+      c.point[0] = mid.x, c.point[1] = mid.y, c.point[2] = mid.z;
+      c.normal[0] = n.x, c.normal[1] = n.y, c.normal[2] = n.z;
+      c.gap = d;
+      c.feature = edge_feature(static_cast<int>(i), static_cast<int>(j));
+      out.push_back(c);
+    }
+  }
+}
+
 /// Predictive vertex–face contacts the separating-axis step does not give: every vertex
 /// of `owner` in front of a face of `other` (0 ≤ distance ≤ alert) whose projection falls
 /// inside that face, so its distance to `other` is exact. The axis step yields only the
@@ -246,6 +297,7 @@ void polyhedron_polyhedron(const Polyhedron& a, const Polyhedron& b, double aler
     c.gap = se;
     c.feature = edge_feature(ea, eb);
     out.push_back(c);
+    edge_edge_contacts(a, b, alert, same, first, out);
     vertex_face_contacts(a, b, true, -1, alert, same, first, out);
     vertex_face_contacts(b, a, false, -1, alert, same, first, out);
     return;
@@ -300,6 +352,7 @@ void polyhedron_polyhedron(const Polyhedron& a, const Polyhedron& b, double aler
   reduce_manifold(out, first);
   // The two clipped faces' vertices are the manifold's (its reduction dropped some on
   // purpose); only the other vertices can add points.
+  edge_edge_contacts(a, b, alert, same, first, out);
   vertex_face_contacts(inc, ref, ref_is_b, inc_face, alert, same, first, out);
   vertex_face_contacts(ref, inc, !ref_is_b, rf, alert, same, first, out);
 }

@@ -1,6 +1,7 @@
 #include "nlgs_body_sweep.hpp"
 
 #include <algorithm>
+#include <cmath>
 #include <moreau/error.hpp>
 #include <string>
 
@@ -14,14 +15,16 @@ struct Layout {
   static constexpr int A = 0, q = D * D, mu = q + D, H = mu + 1, G = H + 2 * D * K, size = G + 2 * K * D;
 };
 
+/// D: rows kept per contact (1: frictionless, the normal only); K: columns per body;
+/// rd: the stride of r (the problem's dimension).
 template <int D, int K>
-void sweep_impl(const LocalOptions& local, const double* rec, const int* body, double* dv, double* r, double omega,
+void sweep_impl(const LocalOptions& local, const double* rec, const int* body, double* dv, double* r, int rd, double omega,
                 const std::vector<Eigen::Index>& order) {
   using L = Layout<D, K>;
   for (Eigen::Index a : order) {
     const double* R = rec + a * L::size;
     const int b0 = body[2 * a], b1 = body[2 * a + 1];
-    double* ra = r + a * D;
+    double* ra = r + a * rd;
     // b = u_α without the contact's own part: q + Σ_s H_s Δv_s − A r_α.
     double b[D], old[D], rn[D];
     for (int i = 0; i < D; ++i) {
@@ -42,7 +45,12 @@ void sweep_impl(const LocalOptions& local, const double* rec, const int* body, d
       for (int i = 0; i < D; ++i)
         for (int l = 0; l < K; ++l) b[i] += H[i * K + l] * v[l];
     }
-    solve_local(local, D, R + L::A, b, R[L::mu], rn);
+    if constexpr (D == 1) {  // frictionless: u_n = A r_n + b ≥ 0, r_n ≥ 0, complementary
+      rn[0] = R[L::A] > 0 ? std::max(0.0, -b[0] / R[L::A]) : 0.0;
+      for (int i = 1; i < rd; ++i) ra[i] = 0;  // r_t = 0 when μ = 0
+    } else {
+      solve_local(local, D, R + L::A, b, R[L::mu], rn);
+    }
     double dr[D];
     for (int i = 0; i < D; ++i) {
       const double x = omega * rn[i] + (1 - omega) * old[i];
@@ -64,6 +72,31 @@ void sweep_impl(const LocalOptions& local, const double* rec, const int* body, d
   }
 }
 
+/// Whether no contact of P turns a body through its normal row (the rotation columns of
+/// the normal rows of H add at most 1e-14 of A_nn) and every inverse mass leaves
+/// translation and rotation uncoupled: then a frictionless problem needs no rotation.
+bool normals_through_centres(const LocalProblem& P) {
+  const BodyFactor& f = P.factor;
+  const int d = P.dim, k = f.k;
+  for (Eigen::Index a = 0; a < P.contacts(); ++a) {
+    double trans = 0, rot = 0;
+    for (int side = 0; side < 2; ++side) {
+      const int b = f.body[2 * a + side];
+      if (b < 0) continue;
+      const double* H = &f.H[(static_cast<std::size_t>(a) * 2 + side) * d * k];  // row 0: the normal
+      const double* Mi = &f.inverse_mass[static_cast<std::size_t>(b) * k * k];
+      for (int i = 0; i < d; ++i)
+        for (int j = d; j < k; ++j)
+          if (Mi[i * k + j] != 0 || Mi[j * k + i] != 0) return false;
+      for (int i = 0; i < d; ++i) trans += H[i] * Mi[i * k + i] * H[i];
+      for (int i = d; i < k; ++i)
+        for (int j = d; j < k; ++j) rot += std::fabs(H[i] * Mi[i * k + j] * H[j]);
+    }
+    if (rot > 1e-14 * trans) return false;
+  }
+  return true;
+}
+
 }  // namespace
 
 void BodySweeper::prepare(const LocalProblem& P, const Eigen::VectorXd& r) {
@@ -71,23 +104,29 @@ void BodySweeper::prepare(const LocalProblem& P, const Eigen::VectorXd& r) {
   if (!f.present()) throw InputError("/solver/exchange", "\"bodies\" needs the factored form W = H M⁻¹ Hᵀ, which only the time-stepper gives (not an FCLib file); use \"auto\" or \"w\"");
   d_ = P.dim;
   k_ = f.k;
+  problem_ = &P;
   const int d = d_, k = k_;
   if (!((d == 2 && k == 3) || (d == 3 && k == 6)))
     throw InputError("/solver/exchange", "\"bodies\" supports rigid bodies (2D: 3 unknowns per body, 3D: 6), not dim " +
                 std::to_string(d) + " with " + std::to_string(k));
   const std::size_t nc = static_cast<std::size_t>(P.contacts());
-  stride_ = static_cast<std::size_t>(d * d + d + 1 + 4 * d * k);
+  const bool frictionless = (P.mu.array() == 0.0).all();
+  pd_ = frictionless ? 1 : d;
+  pk_ = frictionless && normals_through_centres(P) ? d : k;
+  const int pd = pd_, pk = pk_;
+  stride_ = static_cast<std::size_t>(pd * pd + pd + 1 + 4 * pd * pk);
   rec_.assign(nc * stride_, 0.0);
   body_.assign(2 * nc, -1);
   // Moving bodies numbered by first use, so Δv blocks sit in the order contacts reach them.
   std::vector<int> compact(f.inverse_mass.size() / static_cast<std::size_t>(k * k), -1);
   int next = 0;
+  std::vector<double> G(static_cast<std::size_t>(k * d));
   for (std::size_t a = 0; a < nc; ++a) {
     double* R = &rec_[a * stride_];
     double* A = R;
-    double* q = R + d * d;
-    R[d * d + d] = P.mu[static_cast<Eigen::Index>(a)];
-    for (int i = 0; i < d; ++i) q[i] = P.q[static_cast<Eigen::Index>(a * d + i)];
+    double* q = R + pd * pd;
+    R[pd * pd + pd] = P.mu[static_cast<Eigen::Index>(a)];
+    for (int i = 0; i < pd; ++i) q[i] = P.q[static_cast<Eigen::Index>(a * d + i)];
     for (int side = 0; side < 2; ++side) {
       const int b = f.body[2 * a + side];
       if (b < 0) continue;
@@ -95,46 +134,59 @@ void BodySweeper::prepare(const LocalProblem& P, const Eigen::VectorXd& r) {
       body_[2 * a + side] = compact[b];
       const double* Hs = &f.H[(a * 2 + side) * d * k];
       const double* Mi = &f.inverse_mass[static_cast<std::size_t>(b) * k * k];
-      double* H = R + d * d + d + 1 + side * d * k;
-      double* G = R + d * d + d + 1 + 2 * d * k + side * k * d;
-      for (int i = 0; i < d * k; ++i) H[i] = Hs[i];
-      for (int l = 0; l < k; ++l)
+      for (int l = 0; l < k; ++l)  // G = M⁻¹ Hᵀ, whole
         for (int i = 0; i < d; ++i) {
           double s = 0;
           for (int m = 0; m < k; ++m) s += Mi[l * k + m] * Hs[i * k + m];
           G[l * d + i] = s;
         }
-      for (int i = 0; i < d; ++i)  // A += H_s G_s
-        for (int j = 0; j < d; ++j) {
+      for (int i = 0; i < pd; ++i)  // A += H_s G_s over the kept rows
+        for (int j = 0; j < pd; ++j) {
           double s = 0;
           for (int l = 0; l < k; ++l) s += Hs[i * k + l] * G[l * d + j];
-          A[i * d + j] += s;
+          A[i * pd + j] += s;
+        }
+      double* H = R + pd * pd + pd + 1 + side * pd * pk;
+      double* Gp = R + pd * pd + pd + 1 + 2 * pd * pk + side * pk * pd;
+      for (int i = 0; i < pd; ++i)
+        for (int l = 0; l < pk; ++l) {
+          H[i * pk + l] = Hs[i * k + l];
+          Gp[l * pd + i] = G[l * d + i];
         }
     }
   }
-  dv_.assign(static_cast<std::size_t>(next) * k, 0.0);
+  dv_.assign(static_cast<std::size_t>(next) * pk, 0.0);
   reset_velocities(r);
 }
 
 void BodySweeper::reset_velocities(const Eigen::VectorXd& r) {
-  const int d = d_, k = k_;
+  const int d = d_, pd = pd_, pk = pk_;
   std::fill(dv_.begin(), dv_.end(), 0.0);
   const std::size_t nc = body_.size() / 2;
   for (std::size_t a = 0; a < nc; ++a)
     for (int side = 0; side < 2; ++side) {
       const int b = body_[2 * a + side];
       if (b < 0) continue;
-      const double* G = &rec_[a * stride_ + d * d + d + 1 + 2 * d * k + side * k * d];
-      for (int l = 0; l < k; ++l)
-        for (int i = 0; i < d; ++i) dv_[b * k + l] += G[l * d + i] * r[static_cast<Eigen::Index>(a * d + i)];
+      const double* G = &rec_[a * stride_ + pd * pd + pd + 1 + 2 * pd * pk + side * pk * pd];
+      for (int l = 0; l < pk; ++l)
+        for (int i = 0; i < pd; ++i) dv_[b * pk + l] += G[l * pd + i] * r[static_cast<Eigen::Index>(a * d + i)];
     }
 }
 
 void BodySweeper::sweep(Eigen::VectorXd& r, double omega, const std::vector<Eigen::Index>& order) {
-  if (d_ == 2)
-    sweep_impl<2, 3>(local_, rec_.data(), body_.data(), dv_.data(), r.data(), omega, order);
-  else
-    sweep_impl<3, 6>(local_, rec_.data(), body_.data(), dv_.data(), r.data(), omega, order);
+  double* x = r.data();
+  const double* R = rec_.data();
+  const int* b = body_.data();
+  double* v = dv_.data();
+  if (pd_ == 1) {
+    if (pk_ == 2) sweep_impl<1, 2>(local_, R, b, v, x, d_, omega, order);
+    else if (pk_ == 3) sweep_impl<1, 3>(local_, R, b, v, x, d_, omega, order);
+    else sweep_impl<1, 6>(local_, R, b, v, x, d_, omega, order);
+  } else if (d_ == 2) {
+    sweep_impl<2, 3>(local_, R, b, v, x, d_, omega, order);
+  } else {
+    sweep_impl<3, 6>(local_, R, b, v, x, d_, omega, order);
+  }
 }
 
 void BodySweeper::velocities(const Eigen::VectorXd& r, Eigen::VectorXd& u) {
@@ -142,19 +194,53 @@ void BodySweeper::velocities(const Eigen::VectorXd& r, Eigen::VectorXd& u) {
   const int d = d_, k = k_;
   const std::size_t nc = body_.size() / 2;
   u.resize(static_cast<Eigen::Index>(nc * d));
-  for (std::size_t a = 0; a < nc; ++a) {
-    const double* R = &rec_[a * stride_];
+  if (pd_ == d && pk_ == k) {
+    for (std::size_t a = 0; a < nc; ++a) {
+      const double* R = &rec_[a * stride_];
+      for (int i = 0; i < d; ++i) {
+        double s = R[d * d + i];
+        for (int side = 0; side < 2; ++side) {
+          const int b = body_[2 * a + side];
+          if (b < 0) continue;
+          const double* H = R + d * d + d + 1 + side * d * k;
+          for (int l = 0; l < k; ++l) s += H[i * k + l] * dv_[b * k + l];
+        }
+        u[static_cast<Eigen::Index>(a * d + i)] = s;
+      }
+    }
+    return;
+  }
+  // Packed records lack the tangential rows (and maybe the rotations): u = q + H M⁻¹ Hᵀ r
+  // from the problem's own factor, so the caller still gets every component.
+  const BodyFactor& f = problem_->factor;
+  std::vector<double>& P = full_impulse_;
+  std::vector<double>& dv = full_dv_;
+  P.assign(f.inverse_mass.size() / static_cast<std::size_t>(k), 0.0);
+  dv.assign(P.size(), 0.0);
+  for (std::size_t a = 0; a < nc; ++a)
+    for (int side = 0; side < 2; ++side) {
+      const int b = f.body[2 * a + side];
+      if (b < 0) continue;
+      const double* H = &f.H[(a * 2 + side) * d * k];
+      for (int l = 0; l < k; ++l)
+        for (int i = 0; i < d; ++i) P[b * k + l] += H[i * k + l] * r[static_cast<Eigen::Index>(a * d + i)];
+    }
+  for (std::size_t b = 0; b < P.size() / k; ++b) {
+    const double* Mi = &f.inverse_mass[b * k * k];
+    for (int l = 0; l < k; ++l)
+      for (int m = 0; m < k; ++m) dv[b * k + l] += Mi[l * k + m] * P[b * k + m];
+  }
+  for (std::size_t a = 0; a < nc; ++a)
     for (int i = 0; i < d; ++i) {
-      double s = R[d * d + i];
+      double s = problem_->q[static_cast<Eigen::Index>(a * d + i)];
       for (int side = 0; side < 2; ++side) {
-        const int b = body_[2 * a + side];
+        const int b = f.body[2 * a + side];
         if (b < 0) continue;
-        const double* H = R + d * d + d + 1 + side * d * k;
-        for (int l = 0; l < k; ++l) s += H[i * k + l] * dv_[b * k + l];
+        const double* H = &f.H[(a * 2 + side) * d * k];
+        for (int l = 0; l < k; ++l) s += H[i * k + l] * dv[b * k + l];
       }
       u[static_cast<Eigen::Index>(a * d + i)] = s;
     }
-  }
 }
 
 }  // namespace moreau::nlgs

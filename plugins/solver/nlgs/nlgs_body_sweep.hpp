@@ -7,6 +7,11 @@
 // The cost per update is fixed (two d×k blocks each way) whatever the coordination
 // number, and the hot data is one packed record per contact, read in sweep order
 // (Bullet's solver-body idea: the solver packs its own data and writes r back).
+//
+// A frictionless problem (every μ = 0) is the normal problem alone (r_t = 0): records
+// keep the normal row only, and when no normal row turns a body (spheres and disks: the
+// normal passes through the centres) the angular columns go too, so a record shrinks
+// from 85 doubles (3D) to 15 and a scene pays nothing for friction or rotation it lacks.
 #include <Eigen/Core>
 #include <moreau/contact_problem.hpp>
 #include <vector>
@@ -29,12 +34,15 @@ class BodySweeper {
 
  private:
   void reset_velocities(const Eigen::VectorXd& r);
-  int d_ = 3, k_ = 6;
+  int d_ = 3, k_ = 6;         ///< the problem's: contact dimension, unknowns per body
+  int pd_ = 3, pk_ = 6;       ///< packed: rows kept per contact (d, or 1 frictionless), columns per body
   std::size_t stride_ = 0;    ///< doubles per record
-  std::vector<double> rec_;   ///< per contact: A (d×d), q (d), μ, H₀ H₁ (d×k), G₀ G₁ = M⁻¹Hᵀ (k×d)
+  std::vector<double> rec_;   ///< per contact: A (pd×pd), q (pd), μ, H₀ H₁ (pd×pk), G₀ G₁ = M⁻¹Hᵀ (pk×pd)
   std::vector<int> body_;     ///< per contact, 2 indices into dv_ blocks; −1: the body does not move
   LocalOptions local_;        ///< the one-contact solver
-  std::vector<double> dv_;    ///< moving bodies × k: velocity change due to r, numbered by first use
+  std::vector<double> dv_;    ///< moving bodies × pk: velocity change due to r, numbered by first use
+  const LocalProblem* problem_ = nullptr;  ///< for the full u when packed (tangential rows)
+  std::vector<double> full_impulse_, full_dv_;  ///< all bodies × k: Hᵀ r and M⁻¹ Hᵀ r for that u
 };
 
 }  // namespace moreau::nlgs
