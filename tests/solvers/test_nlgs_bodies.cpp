@@ -132,6 +132,32 @@ TEST(NlgsBodies, FrictionlessPackedRecordsGiveTheSameAnswer) {
       }
 }
 
+TEST(NlgsBodies, ScalarInverseMassesGiveTheSameAnswer) {
+  // Spheres and disks: M⁻¹ = diag(m_t I, m_r I) per body, kept as two scalars instead of
+  // G = M⁻¹Hᵀ in the records (with friction). Rounding-size off-diagonal terms (a sphere's
+  // R I⁻¹ Rᵀ) must not stop it from applying, nor change the answer.
+  for (int d : {2, 3})
+    for (unsigned seed = 1; seed <= 3; ++seed) {
+      auto P = random_problem(d, 6, 2, d == 2 ? 6 : 5, seed);
+      const int k = P.factor.k;
+      for (std::size_t b = 2; b < P.factor.inverse_mass.size() / (k * k); ++b) {
+        double* Mi = &P.factor.inverse_mass[b * k * k];
+        const double mt = 0.5 + 0.1 * static_cast<double>(b), mr = 2.0 + 0.3 * static_cast<double>(b);
+        for (int i = 0; i < k; ++i)
+          for (int j = 0; j < k; ++j) Mi[i * k + j] = i != j ? 1e-17 * mr : i < d ? mt : mr;
+      }
+      P.W = moreau::assemble_w(d, P.factor);
+      Eigen::VectorXd rw, uw, rb, ub;
+      const auto rep_w = nlgs("w")->solve(P, rw, uw);
+      const auto rep_b = nlgs("bodies")->solve(P, rb, ub);
+      ASSERT_TRUE(rep_w.converged) << rep_w.error;
+      ASSERT_TRUE(rep_b.converged) << "dim " << d << " seed " << seed << ": " << rep_b.error;
+      EXPECT_LT((rb - rw).norm(), 1e-7 * (1 + rw.norm()));
+      EXPECT_LT((ub - (P.W * rb + P.q)).norm(), 1e-10 * (1 + P.q.norm()));
+      EXPECT_GT(rw.norm(), 0.1) << "the case closes contacts";
+    }
+}
+
 TEST(NlgsBodies, WarmStartFromTheAnswerStopsAtOnce) {
   const auto P = random_problem(3, 6, 2, 5, 7);
   Eigen::VectorXd r, u;

@@ -9,18 +9,22 @@ namespace moreau::nlgs {
 
 namespace {
 
-/// Offsets inside a record of dimension D with K unknowns per body.
-template <int D, int K>
+/// Offsets inside a record of dimension D with K unknowns per body. Iso: both bodies'
+/// inverse masses are scalars per block (spheres, disks): the record keeps them (m: side
+/// 0 translation, rotation, side 1 the same) instead of G = M⁻¹Hᵀ, 53 doubles in 3D
+/// instead of 85.
+template <int D, int K, bool Iso = false>
 struct Layout {
-  static constexpr int A = 0, q = D * D, mu = q + D, H = mu + 1, G = H + 2 * D * K, size = G + 2 * K * D;
+  static constexpr int A = 0, q = D * D, mu = q + D, m = mu + 1, H = Iso ? m + 4 : mu + 1, G = H + 2 * D * K,
+                       size = Iso ? G : G + 2 * K * D;
 };
 
 /// D: rows kept per contact (1: frictionless, the normal only); K: columns per body;
 /// rd: the stride of r (the problem's dimension).
-template <int D, int K>
+template <int D, int K, bool Iso = false>
 void sweep_impl(const LocalOptions& local, const double* rec, const int* body, double* dv, double* r, int rd, double omega,
                 const std::vector<Eigen::Index>& order) {
-  using L = Layout<D, K>;
+  using L = Layout<D, K, Iso>;
   for (Eigen::Index a : order) {
     const double* R = rec + a * L::size;
     const int b0 = body[2 * a], b1 = body[2 * a + 1];
@@ -57,17 +61,23 @@ void sweep_impl(const LocalOptions& local, const double* rec, const int* body, d
       dr[i] = x - old[i];
       ra[i] = x;
     }
-    if (b0 >= 0) {
-      const double* G = R + L::G;
-      double* v = dv + b0 * K;
-      for (int l = 0; l < K; ++l)
-        for (int i = 0; i < D; ++i) v[l] += G[l * D + i] * dr[i];
-    }
-    if (b1 >= 0) {
-      const double* G = R + L::G + K * D;
-      double* v = dv + b1 * K;
-      for (int l = 0; l < K; ++l)
-        for (int i = 0; i < D; ++i) v[l] += G[l * D + i] * dr[i];
+    for (int side = 0; side < 2; ++side) {
+      const int bs = side == 0 ? b0 : b1;
+      if (bs < 0) continue;
+      double* v = dv + bs * K;
+      if constexpr (Iso) {  // Δv = M⁻¹ Hᵀ dr with M⁻¹ = diag(m_t, m_r): D translations first
+        const double* H = R + L::H + side * D * K;
+        const double* m = R + L::m + 2 * side;
+        for (int l = 0; l < K; ++l) {
+          double s = 0;
+          for (int i = 0; i < D; ++i) s += H[i * K + l] * dr[i];
+          v[l] += (l < D ? m[0] : m[1]) * s;
+        }
+      } else {
+        const double* G = R + L::G + side * K * D;
+        for (int l = 0; l < K; ++l)
+          for (int i = 0; i < D; ++i) v[l] += G[l * D + i] * dr[i];
+      }
     }
   }
 }
@@ -97,6 +107,21 @@ bool normals_through_centres(const LocalProblem& P) {
   return true;
 }
 
+/// The translation and rotation scalars of a body's inverse mass when it is diagonal with
+/// one value per block (to 1e-12: a sphere's world inertia R I⁻¹ Rᵀ has rounding off the
+/// diagonal); false otherwise.
+bool isotropic(const double* Mi, int d, int k, double& mt, double& mr) {
+  mt = Mi[0];
+  mr = Mi[d * k + d];
+  const double scale = std::max(std::fabs(mt), std::fabs(mr));
+  for (int i = 0; i < k; ++i)
+    for (int j = 0; j < k; ++j) {
+      const double want = i != j ? 0.0 : i < d ? mt : mr;
+      if (std::fabs(Mi[i * k + j] - want) > 1e-12 * scale) return false;
+    }
+  return true;
+}
+
 }  // namespace
 
 void BodySweeper::prepare(const LocalProblem& P, const Eigen::VectorXd& r) {
@@ -114,7 +139,15 @@ void BodySweeper::prepare(const LocalProblem& P, const Eigen::VectorXd& r) {
   pd_ = frictionless ? 1 : d;
   pk_ = frictionless && normals_through_centres(P) ? d : k;
   const int pd = pd_, pk = pk_;
-  stride_ = static_cast<std::size_t>(pd * pd + pd + 1 + 4 * pd * pk);
+  // Scalar inverse masses (with friction: the frictionless records are small already).
+  iso_ = pd == d && pk == k;
+  for (std::size_t i = 0; i < f.body.size() && iso_; ++i) {
+    double mt, mr;
+    iso_ = f.body[i] < 0 || isotropic(&f.inverse_mass[static_cast<std::size_t>(f.body[i]) * k * k], d, k, mt, mr);
+  }
+  off_H_ = pd * pd + pd + 1 + (iso_ ? 4 : 0);
+  off_G_ = off_H_ + 2 * pd * pk;
+  stride_ = static_cast<std::size_t>(off_G_ + (iso_ ? 0 : 2 * pd * pk));
   rec_.assign(nc * stride_, 0.0);
   body_.assign(2 * nc, -1);
   // Moving bodies numbered by first use, so Δv blocks sit in the order contacts reach them.
@@ -146,13 +179,16 @@ void BodySweeper::prepare(const LocalProblem& P, const Eigen::VectorXd& r) {
           for (int l = 0; l < k; ++l) s += Hs[i * k + l] * G[l * d + j];
           A[i * pd + j] += s;
         }
-      double* H = R + pd * pd + pd + 1 + side * pd * pk;
-      double* Gp = R + pd * pd + pd + 1 + 2 * pd * pk + side * pk * pd;
+      double* H = R + off_H_ + side * pd * pk;
       for (int i = 0; i < pd; ++i)
-        for (int l = 0; l < pk; ++l) {
-          H[i * pk + l] = Hs[i * k + l];
-          Gp[l * pd + i] = G[l * d + i];
-        }
+        for (int l = 0; l < pk; ++l) H[i * pk + l] = Hs[i * k + l];
+      if (iso_) {
+        isotropic(Mi, d, k, R[pd * pd + pd + 1 + 2 * side], R[pd * pd + pd + 2 + 2 * side]);
+      } else {
+        double* Gp = R + off_G_ + side * pk * pd;
+        for (int i = 0; i < pd; ++i)
+          for (int l = 0; l < pk; ++l) Gp[l * pd + i] = G[l * d + i];
+      }
     }
   }
   dv_.assign(static_cast<std::size_t>(next) * pk, 0.0);
@@ -167,9 +203,18 @@ void BodySweeper::reset_velocities(const Eigen::VectorXd& r) {
     for (int side = 0; side < 2; ++side) {
       const int b = body_[2 * a + side];
       if (b < 0) continue;
-      const double* G = &rec_[a * stride_ + pd * pd + pd + 1 + 2 * pd * pk + side * pk * pd];
-      for (int l = 0; l < pk; ++l)
-        for (int i = 0; i < pd; ++i) dv_[b * pk + l] += G[l * pd + i] * r[static_cast<Eigen::Index>(a * d + i)];
+      const double* R = &rec_[a * stride_];
+      const double* ra = &r[static_cast<Eigen::Index>(a * d)];
+      if (iso_) {
+        const double* H = R + off_H_ + side * pd * pk;
+        const double* m = R + pd * pd + pd + 1 + 2 * side;
+        for (int l = 0; l < pk; ++l)
+          for (int i = 0; i < pd; ++i) dv_[b * pk + l] += (l < d ? m[0] : m[1]) * H[i * pk + l] * ra[i];
+      } else {
+        const double* G = R + off_G_ + side * pk * pd;
+        for (int l = 0; l < pk; ++l)
+          for (int i = 0; i < pd; ++i) dv_[b * pk + l] += G[l * pd + i] * ra[i];
+      }
     }
 }
 
@@ -183,9 +228,11 @@ void BodySweeper::sweep(Eigen::VectorXd& r, double omega, const std::vector<Eige
     else if (pk_ == 3) sweep_impl<1, 3>(local_, R, b, v, x, d_, omega, order);
     else sweep_impl<1, 6>(local_, R, b, v, x, d_, omega, order);
   } else if (d_ == 2) {
-    sweep_impl<2, 3>(local_, R, b, v, x, d_, omega, order);
+    if (iso_) sweep_impl<2, 3, true>(local_, R, b, v, x, d_, omega, order);
+    else sweep_impl<2, 3>(local_, R, b, v, x, d_, omega, order);
   } else {
-    sweep_impl<3, 6>(local_, R, b, v, x, d_, omega, order);
+    if (iso_) sweep_impl<3, 6, true>(local_, R, b, v, x, d_, omega, order);
+    else sweep_impl<3, 6>(local_, R, b, v, x, d_, omega, order);
   }
 }
 
@@ -202,7 +249,7 @@ void BodySweeper::velocities(const Eigen::VectorXd& r, Eigen::VectorXd& u) {
         for (int side = 0; side < 2; ++side) {
           const int b = body_[2 * a + side];
           if (b < 0) continue;
-          const double* H = R + d * d + d + 1 + side * d * k;
+          const double* H = R + off_H_ + side * d * k;
           for (int l = 0; l < k; ++l) s += H[i * k + l] * dv_[b * k + l];
         }
         u[static_cast<Eigen::Index>(a * d + i)] = s;
