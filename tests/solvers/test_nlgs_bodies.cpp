@@ -215,6 +215,30 @@ TEST(AutoFactored, WithoutWSameAnswerAsWithW) {
     }
 }
 
+TEST(ApgdFactored, ThroughTheFactorSameAnswerAsWithW) {
+  // Given only the factor (as the time-stepper gives it), APGD multiplies by H M⁻¹ Hᵀ:
+  // the same iterates as with W, to rounding.
+  for (int d : {2, 3})
+    for (unsigned seed : {21u, 22u}) {
+      const auto full = random_problem(d, 6, 2, d == 2 ? 6 : 5, seed);
+      auto factored = full;
+      factored.W.resize(0, 0);
+      auto apgd = [] {
+        return moreau_test::create<moreau::Solver>(
+            "apgd", {{"tolerance", 1e-10}, {"max_iterations", 100000}, {"shrink", 0.9}, {"restart", true}},
+            moreau::BuildContext{});
+      };
+      Eigen::VectorXd rw, uw, rf, uf;
+      const auto rep_w = apgd()->solve(full, rw, uw);
+      const auto rep_f = apgd()->solve(factored, rf, uf);
+      ASSERT_TRUE(rep_w.converged) << rep_w.error;
+      ASSERT_TRUE(rep_f.converged) << rep_f.error;
+      EXPECT_LT(std::abs(rep_f.iterations - rep_w.iterations), 1 + rep_w.iterations / 10);
+      EXPECT_LT((rf - rw).norm(), 1e-7 * (1 + rw.norm()));
+      EXPECT_LT((uf - (full.W * rf + full.q)).norm(), 1e-10 * (1 + full.q.norm()));
+    }
+}
+
 TEST(AutoFactored, AboveDirectMaxContactsApgdAndNlgsReachTheSameAnswer) {
   // With direct_max_contacts = 0 every problem counts as large: after the first NLGS
   // stage, APGD and NLGS alternate (no sparse LU). Stopped NLGS stages early

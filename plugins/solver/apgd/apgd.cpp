@@ -27,6 +27,9 @@ class ApgdSolver : public Solver {
     o_.restart = p.boolean("restart");
   }
 
+  /// From the time-stepper it multiplies through the factor W = H M⁻¹ Hᵀ: W is not built.
+  bool reads_matrix_with_factor() const override { return false; }
+
   SolverReport solve(const LocalProblem& P, Eigen::VectorXd& r, Eigen::VectorXd& u) override {
     return apgd::solve(P, o_, r, u);
   }

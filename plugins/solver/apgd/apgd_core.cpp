@@ -2,6 +2,7 @@
 
 #include <cmath>
 #include <moreau/contact_error.hpp>
+#include <vector>
 
 namespace moreau::apgd {
 
@@ -19,6 +20,78 @@ void de_saxce_add(const LocalProblem& P, Eigen::VectorXd& u) {
     u[a * d] += P.mu[a] * (d == 2 ? std::fabs(ua[1]) : std::hypot(ua[1], ua[2]));
   }
 }
+/// Products by W: by the matrix when given, else through its factor W = H M⁻¹ Hᵀ (the
+/// time-stepper's form, which `auto` passes without assembling W: for 10⁵ spheres W has
+/// ~3·10⁷ entries, the factor's H blocks a tenth of that).
+class WProduct {
+ public:
+  explicit WProduct(const LocalProblem& P) : P_(P), through_factor_(P.W.rows() != P.q.size() && P.factor.present()) {}
+
+  void apply(const Eigen::VectorXd& x, Eigen::VectorXd& out) {
+    if (!through_factor_) {
+      out = P_.W * x;
+      return;
+    }
+    const BodyFactor& f = P_.factor;
+    const int d = P_.dim, k = f.k;
+    const std::size_t nc = f.body.size() / 2;
+    impulse_.assign(f.inverse_mass.size() / static_cast<std::size_t>(k), 0.0);
+    dv_.assign(impulse_.size(), 0.0);
+    for (std::size_t a = 0; a < nc; ++a)  // Hᵀ x per body
+      for (int side = 0; side < 2; ++side) {
+        const int b = f.body[2 * a + side];
+        if (b < 0) continue;
+        const double* H = &f.H[(a * 2 + side) * d * k];
+        for (int l = 0; l < k; ++l)
+          for (int i = 0; i < d; ++i) impulse_[b * k + l] += H[i * k + l] * x[static_cast<Eigen::Index>(a * d + i)];
+      }
+    for (std::size_t b = 0; b < dv_.size() / k; ++b) {  // M⁻¹ per body
+      const double* Mi = &f.inverse_mass[b * k * k];
+      for (int l = 0; l < k; ++l)
+        for (int m = 0; m < k; ++m) dv_[b * k + l] += Mi[l * k + m] * impulse_[b * k + m];
+    }
+    out.setZero(x.size());
+    for (std::size_t a = 0; a < nc; ++a)  // H Δv per contact
+      for (int side = 0; side < 2; ++side) {
+        const int b = f.body[2 * a + side];
+        if (b < 0) continue;
+        const double* H = &f.H[(a * 2 + side) * d * k];
+        for (int i = 0; i < d; ++i) {
+          double s = 0;
+          for (int l = 0; l < k; ++l) s += H[i * k + l] * dv_[b * k + l];
+          out[static_cast<Eigen::Index>(a * d + i)] += s;
+        }
+      }
+  }
+
+  /// W's diagonal.
+  Eigen::VectorXd diagonal() const {
+    if (!through_factor_) return P_.W.diagonal();
+    const BodyFactor& f = P_.factor;
+    const int d = P_.dim, k = f.k;
+    Eigen::VectorXd w = Eigen::VectorXd::Zero(P_.q.size());
+    for (std::size_t a = 0; a < f.body.size() / 2; ++a)
+      for (int side = 0; side < 2; ++side) {
+        const int b = f.body[2 * a + side];
+        if (b < 0) continue;
+        const double* H = &f.H[(a * 2 + side) * d * k];
+        const double* Mi = &f.inverse_mass[static_cast<std::size_t>(b) * k * k];
+        for (int i = 0; i < d; ++i) {
+          double s = 0;
+          for (int l = 0; l < k; ++l)
+            for (int m = 0; m < k; ++m) s += H[i * k + l] * Mi[l * k + m] * H[i * k + m];
+          w[static_cast<Eigen::Index>(a * d + i)] += s;
+        }
+      }
+    return w;
+  }
+
+ private:
+  const LocalProblem& P_;
+  bool through_factor_;
+  std::vector<double> impulse_, dv_;
+};
+
 }  // namespace
 
 SolverReport solve(const LocalProblem& P, const Options& o, Eigen::VectorXd& r, Eigen::VectorXd& u) {
@@ -31,14 +104,16 @@ SolverReport solve(const LocalProblem& P, const Options& o, Eigen::VectorXd& r, 
     rep.converged = true;
     return rep;
   }
+  WProduct W(P);
+  const Eigen::VectorXd diag = W.diagonal();
   Eigen::VectorXd D(n);
   double mean_diag = 0;
-  for (Eigen::Index i = 0; i < n; ++i) mean_diag += P.W.coeff(i, i);
+  for (Eigen::Index i = 0; i < n; ++i) mean_diag += diag[i];
   mean_diag /= static_cast<double>(n);
   if (!(mean_diag > 0)) mean_diag = 1;
   for (Eigen::Index a = 0; a < nc; ++a) {
     double t = 0;
-    for (int k = 0; k < d; ++k) t += P.W.coeff(a * d + k, a * d + k);
+    for (int k = 0; k < d; ++k) t += diag[a * d + k];
     t /= d;
     if (!(t > 1e-12 * mean_diag)) t = mean_diag;
     for (int k = 0; k < d; ++k) D[a * d + k] = t;
@@ -47,7 +122,7 @@ SolverReport solve(const LocalProblem& P, const Options& o, Eigen::VectorXd& r, 
 
   Eigen::VectorXd x(n), Wx(n), y(n), Wy(n), xn(n), Wxn(n), g(n), dl(n), Wd(n), tmp(n), best(n);
   project_all(P, r, x);
-  Wx = P.W * x;
+  W.apply(x, Wx);
   y = x;
   Wy = Wx;
   u = Wx + P.q;
@@ -63,7 +138,7 @@ SolverReport solve(const LocalProblem& P, const Options& o, Eigen::VectorXd& r, 
       tmp = y - (1 / L) * Dinv.cwiseProduct(g);
       project_all(P, tmp, xn);
       dl = xn - y;
-      Wd = P.W * dl;
+      W.apply(dl, Wd);
       const double lhs = dl.dot(Wd), rhs = L * dl.dot(D.cwiseProduct(dl));
       if (!std::isfinite(lhs)) break;
       if (lhs <= rhs * (1 + 1e-12) + 1e-300) {
@@ -95,7 +170,8 @@ SolverReport solve(const LocalProblem& P, const Options& o, Eigen::VectorXd& r, 
     }
   }
   r = best;
-  u = P.W * r + P.q;
+  W.apply(r, u);
+  u += P.q;
   rep.error = natural_map_error(P, r, u);
   rep.converged = rep.error <= o.tolerance;
   return rep;

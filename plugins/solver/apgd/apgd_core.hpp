@@ -8,7 +8,8 @@
 // after each step). Extrapolation y = x⁺ + β(x⁺ − x) with the Nesterov sequence, restarted
 // (y = x⁺) when gᵀ(x⁺ − x) > 0 (O'Donoghue–Candès gradient restart). One product by W per
 // step plus one per backtrack. Stopping test: the DESIGN §1 error at x⁺; the best finite
-// iterate is returned.
+// iterate is returned. Without W (0 × 0) but with its factor, the products go through the
+// factor: W x = H (M⁻¹ (Hᵀ x)).
 #include <moreau/contact_problem.hpp>
 #include <moreau/solver.hpp>
 

@@ -127,20 +127,12 @@ class Auto : public Solver {
     };
     if (nlgs_stage()) return finish();
 
-    // W, assembled now if only the factor was given (the later stages multiply by it).
-    LocalProblem assembled;
-    const LocalProblem& Q = P.W.rows() == n || total >= max_it_ ? P : assembled;
-    if (&Q == &assembled) {
-      assembled.dim = d;
-      assembled.W = assemble_w(d, P.factor);
-      assembled.q = P.q;
-      assembled.mu = P.mu;
-    }
     int fruitless = 0;  // consecutive stages that did not improve the best error
 
     // 2a. Many contacts: no factorisation (Newton's and ADMM's sparse LU of W fill in like
     // a 3D grid's: 0.8 s per Newton step at 3200 sphere contacts, minutes at 10⁴). APGD
-    // (a product by W per step) and NLGS in turn, each from the best iterate.
+    // (a product by W per step, through the factor when W was not given) and NLGS in
+    // turn, each from the best iterate.
     if (nc > direct_max_contacts_) {
       bool apgd_next = true;
       while (total < max_it_ && fruitless < 4 && best_err > tol_) {
@@ -150,7 +142,7 @@ class Auto : public Solver {
           apgd::Options o;
           o.tolerance = tol_;
           o.max_iterations = std::min(max_it_ - total, apgd_it_);
-          const SolverReport s = apgd::solve(Q, o, x, v);
+          const SolverReport s = apgd::solve(P, o, x, v);
           total += std::max<long>(s.iterations, 1);
           keep(x, s.error);
         } else if (nlgs_stage()) {
@@ -162,7 +154,16 @@ class Auto : public Solver {
       return finish();
     }
 
-    // 2b. Newton and ADMM in turn, each from the best iterate.
+    // 2b. Newton and ADMM in turn, each from the best iterate, on W (assembled now if only
+    // the factor was given).
+    LocalProblem assembled;
+    const LocalProblem& Q = P.W.rows() == n || total >= max_it_ ? P : assembled;
+    if (&Q == &assembled) {
+      assembled.dim = d;
+      assembled.W = assemble_w(d, P.factor);
+      assembled.q = P.q;
+      assembled.mu = P.mu;
+    }
     bool newton_next = true;
     int newton_stages = 0;
     while (total < max_it_ && fruitless < 4) {
