@@ -6,19 +6,7 @@
 #include <random>
 
 #include "local_coulomb.hpp"
-
-namespace {
-double local_error(int d, const double* A, const double* b, double mu, const double* r) {
-  moreau::LocalProblem P;
-  P.dim = d;
-  P.W.resize(d, d);
-  for (int i = 0; i < d; ++i)
-    for (int j = 0; j < d; ++j) P.W.insert(i, j) = A[i * d + j];
-  P.q = Eigen::Map<const Eigen::VectorXd>(b, d);
-  P.mu = Eigen::VectorXd::Constant(1, mu);
-  return moreau::natural_map_error(P, Eigen::Map<const Eigen::VectorXd>(r, d));
-}
-}  // namespace
+#include "one_contact_error.hpp"
 
 TEST(LocalCoulomb, RandomBlocks2DAreSolvedExactly) {
   std::mt19937 rng(7);
@@ -33,7 +21,7 @@ TEST(LocalCoulomb, RandomBlocks2DAreSolvedExactly) {
     b[1] = u(rng);
     const double mu = 1.5 * (u(rng) + 1) / 2;
     moreau::nlgs::solve_local(2, A, b, mu, r);
-    if (local_error(2, A, b, mu, r) > 1e-10) ++worst;
+    if (moreau_test::one_contact_error(2, A, b, mu, r) > 1e-10) ++worst;
   }
   EXPECT_EQ(worst, 0);
 }
@@ -54,7 +42,7 @@ TEST(LocalCoulomb, RandomBlocks3D) {
     for (double& x : b) x = u(rng);
     const double mu = 0.1 + 0.9 * (u(rng) + 1) / 2;
     moreau::nlgs::solve_local(3, A, b, mu, r);
-    if (local_error(3, A, b, mu, r) > 1e-8) ++failed;
+    if (moreau_test::one_contact_error(3, A, b, mu, r) > 1e-8) ++failed;
   }
   // Known limit: a few strongly coupled blocks (about 3 in 10⁵) escape the angle search
   // and fall back to projected iterations (see docs/contacts.md). Isotropic blocks (round

@@ -7,22 +7,12 @@
 #include <random>
 
 #include "local_solvers.hpp"
+#include "one_contact_error.hpp"
 #include "solver_cases.hpp"
 
 using namespace moreau::nlgs;
 
 namespace {
-double block_error(int d, const double* A, const double* b, double mu, const double* r) {
-  moreau::LocalProblem P;
-  P.dim = d;
-  P.W.resize(d, d);
-  for (int i = 0; i < d; ++i)
-    for (int j = 0; j < d; ++j) P.W.insert(i, j) = A[i * d + j];
-  P.q = Eigen::Map<const Eigen::VectorXd>(b, d);
-  P.mu = Eigen::VectorXd::Constant(1, mu);
-  return moreau::natural_map_error(P, Eigen::Map<const Eigen::VectorXd>(r, d));
-}
-
 /// Solves `n` random blocks A = 0.1 I + B Bᵀ (condition numbers up to a few hundred), b and
 /// μ ∈ [0.1, 1] random, from r = 0; returns how many end above `tol`.
 int failures(LocalMethod m, int d, int iterations, int repeat_visits, double tol, unsigned seed, int n = 5000) {
@@ -44,7 +34,7 @@ int failures(LocalMethod m, int d, int iterations, int repeat_visits, double tol
     const double mu = 0.1 + 0.9 * (U(rng) + 1) / 2;
     // Visits repeated as NLGS repeats them (sweeps), each from the last answer.
     for (int v = 0; v < repeat_visits; ++v) solve_local(o, d, A, b, mu, r);
-    if (!(block_error(d, A, b, mu, r) <= tol)) ++failed;
+    if (!(moreau_test::one_contact_error(d, A, b, mu, r) <= tol)) ++failed;
   }
   return failed;
 }
