@@ -30,21 +30,25 @@ void Polyhedron::finish() {
     n = (1 / norm(n)) * n;
     normal.push_back(n);
     offset.push_back(dot(n, v[f[0]]));
-    for (std::size_t i = 0; i < f.size(); ++i) {
-      const int a = f[i], b = f[(i + 1) % f.size()];
-      if (a < b) edges.push_back({a, b});  // each edge once (its other face lists it b→a)
-    }
   }
-  for (const auto& e : edges) {
-    std::array<int, 2> two{-1, -1};
-    for (std::size_t f = 0; f < faces.size(); ++f)
-      for (std::size_t i = 0; i < faces[f].size(); ++i) {
-        const int a = faces[f][i], b = faces[f][(i + 1) % faces[f].size()];
-        if (a == e[0] && b == e[1]) two[0] = static_cast<int>(f);
-        if (a == e[1] && b == e[0]) two[1] = static_cast<int>(f);
+  // Each edge once, with the face listing it a→b (a < b) first and the one listing it b→a
+  // second: one pass to number the edges, one to pair them (this runs at every detection).
+  const std::size_t nv = v.size();
+  std::vector<int> edge_of(nv * nv, -1);
+  for (int pass = 0; pass < 2; ++pass)
+    for (std::size_t fi = 0; fi < faces.size(); ++fi) {
+      const auto& f = faces[fi];
+      for (std::size_t i = 0; i < f.size(); ++i) {
+        const int a = f[i], b = f[(i + 1) % f.size()];
+        if (pass == 0 && a < b) {
+          edge_of[a * nv + b] = static_cast<int>(edges.size());
+          edges.push_back({a, b});
+          edge_faces.push_back({static_cast<int>(fi), -1});
+        } else if (pass == 1 && a > b) {
+          edge_faces[edge_of[b * nv + a]][1] = static_cast<int>(fi);
+        }
       }
-    edge_faces.push_back(two);
-  }
+    }
 }
 
 std::vector<double> box_geometry_as_convex(const std::vector<double>& s) {

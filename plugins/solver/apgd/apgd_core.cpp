@@ -2,6 +2,7 @@
 
 #include <cmath>
 #include <moreau/contact_error.hpp>
+#include <moreau/factor_matrix.hpp>
 #include <vector>
 
 namespace moreau::apgd {
@@ -32,36 +33,7 @@ class WProduct {
       out = P_.W * x;
       return;
     }
-    const BodyFactor& f = P_.factor;
-    const int d = P_.dim, k = f.k;
-    const std::size_t nc = f.body.size() / 2;
-    impulse_.assign(f.inverse_mass.size() / static_cast<std::size_t>(k), 0.0);
-    dv_.assign(impulse_.size(), 0.0);
-    for (std::size_t a = 0; a < nc; ++a)  // Hᵀ x per body
-      for (int side = 0; side < 2; ++side) {
-        const int b = f.body[2 * a + side];
-        if (b < 0) continue;
-        const double* H = &f.H[(a * 2 + side) * d * k];
-        for (int l = 0; l < k; ++l)
-          for (int i = 0; i < d; ++i) impulse_[b * k + l] += H[i * k + l] * x[static_cast<Eigen::Index>(a * d + i)];
-      }
-    for (std::size_t b = 0; b < dv_.size() / k; ++b) {  // M⁻¹ per body
-      const double* Mi = &f.inverse_mass[b * k * k];
-      for (int l = 0; l < k; ++l)
-        for (int m = 0; m < k; ++m) dv_[b * k + l] += Mi[l * k + m] * impulse_[b * k + m];
-    }
-    out.setZero(x.size());
-    for (std::size_t a = 0; a < nc; ++a)  // H Δv per contact
-      for (int side = 0; side < 2; ++side) {
-        const int b = f.body[2 * a + side];
-        if (b < 0) continue;
-        const double* H = &f.H[(a * 2 + side) * d * k];
-        for (int i = 0; i < d; ++i) {
-          double s = 0;
-          for (int l = 0; l < k; ++l) s += H[i * k + l] * dv_[b * k + l];
-          out[static_cast<Eigen::Index>(a * d + i)] += s;
-        }
-      }
+    multiply_w(P_.dim, P_.factor, x, out, impulse_, dv_);
   }
 
   /// W's diagonal.

@@ -3,6 +3,7 @@
 #include <algorithm>
 #include <cmath>
 #include <moreau/error.hpp>
+#include <moreau/factor_matrix.hpp>
 #include <string>
 
 namespace moreau::nlgs {
@@ -259,35 +260,8 @@ void BodySweeper::velocities(const Eigen::VectorXd& r, Eigen::VectorXd& u) {
   }
   // Packed records lack the tangential rows (and maybe the rotations): u = q + H M⁻¹ Hᵀ r
   // from the problem's own factor, so the caller still gets every component.
-  const BodyFactor& f = problem_->factor;
-  std::vector<double>& P = full_impulse_;
-  std::vector<double>& dv = full_dv_;
-  P.assign(f.inverse_mass.size() / static_cast<std::size_t>(k), 0.0);
-  dv.assign(P.size(), 0.0);
-  for (std::size_t a = 0; a < nc; ++a)
-    for (int side = 0; side < 2; ++side) {
-      const int b = f.body[2 * a + side];
-      if (b < 0) continue;
-      const double* H = &f.H[(a * 2 + side) * d * k];
-      for (int l = 0; l < k; ++l)
-        for (int i = 0; i < d; ++i) P[b * k + l] += H[i * k + l] * r[static_cast<Eigen::Index>(a * d + i)];
-    }
-  for (std::size_t b = 0; b < P.size() / k; ++b) {
-    const double* Mi = &f.inverse_mass[b * k * k];
-    for (int l = 0; l < k; ++l)
-      for (int m = 0; m < k; ++m) dv[b * k + l] += Mi[l * k + m] * P[b * k + m];
-  }
-  for (std::size_t a = 0; a < nc; ++a)
-    for (int i = 0; i < d; ++i) {
-      double s = problem_->q[static_cast<Eigen::Index>(a * d + i)];
-      for (int side = 0; side < 2; ++side) {
-        const int b = f.body[2 * a + side];
-        if (b < 0) continue;
-        const double* H = &f.H[(a * 2 + side) * d * k];
-        for (int l = 0; l < k; ++l) s += H[i * k + l] * dv[b * k + l];
-      }
-      u[static_cast<Eigen::Index>(a * d + i)] = s;
-    }
+  multiply_w(d, problem_->factor, r, u, full_impulse_, full_dv_);
+  u += problem_->q;
 }
 
 }  // namespace moreau::nlgs

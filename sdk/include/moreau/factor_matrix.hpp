@@ -1,7 +1,8 @@
 #pragma once
 // W = H M⁻¹ Hᵀ from its factored form (contact_problem.hpp): what the time-stepper passes
 // as `LocalProblem::W`, and what a solver given only the factor assembles when it needs
-// the matrix after all (`auto` escalating from NLGS to Newton or ADMM).
+// the matrix after all (`auto` escalating from NLGS to Newton or ADMM); and the product
+// W x through the factor, for solvers that need only products (APGD, NLGS's checks).
 // W_αβ = Σ over the bodies α and β share of H_α,b M_b⁻¹ H_β,bᵀ, written straight into
 // compressed rows: a triplet list would hold every contribution of every body (~3·10⁶
 // entries for 10⁴ spheres) and sort them. Fixed bodies (index −1) couple nothing. Column
@@ -104,6 +105,42 @@ inline Eigen::SparseMatrix<double, Eigen::RowMajor> assemble_w(int d, const Body
   std::copy(cols.begin(), cols.end(), W.innerIndexPtr());
   std::copy(vals.begin(), vals.end(), W.valuePtr());
   return W;
+}
+
+/// out = W x = H (M⁻¹ (Hᵀ x)) without forming W: per contact side, d × k each way, and
+/// k × k per body. `impulse` and `dv` are scratch (bodies × k), kept by the caller so
+/// repeated products do not allocate.
+inline void multiply_w(int d, const BodyFactor& f, const Eigen::VectorXd& x, Eigen::VectorXd& out,
+                       std::vector<double>& impulse, std::vector<double>& dv) {
+  const int k = f.k;
+  const std::size_t nc = f.body.size() / 2;
+  impulse.assign(f.inverse_mass.size() / static_cast<std::size_t>(k), 0.0);
+  dv.assign(impulse.size(), 0.0);
+  for (std::size_t a = 0; a < nc; ++a)  // Hᵀ x per body
+    for (int side = 0; side < 2; ++side) {
+      const int b = f.body[2 * a + side];
+      if (b < 0) continue;
+      const double* H = &f.H[(a * 2 + side) * d * k];
+      for (int l = 0; l < k; ++l)
+        for (int i = 0; i < d; ++i) impulse[b * k + l] += H[i * k + l] * x[static_cast<Eigen::Index>(a * d + i)];
+    }
+  for (std::size_t b = 0; b < dv.size() / k; ++b) {  // M⁻¹ per body
+    const double* Mi = &f.inverse_mass[b * k * k];
+    for (int l = 0; l < k; ++l)
+      for (int m = 0; m < k; ++m) dv[b * k + l] += Mi[l * k + m] * impulse[b * k + m];
+  }
+  out.setZero(x.size());
+  for (std::size_t a = 0; a < nc; ++a)  // H Δv per contact
+    for (int side = 0; side < 2; ++side) {
+      const int b = f.body[2 * a + side];
+      if (b < 0) continue;
+      const double* H = &f.H[(a * 2 + side) * d * k];
+      for (int i = 0; i < d; ++i) {
+        double s = 0;
+        for (int l = 0; l < k; ++l) s += H[i * k + l] * dv[b * k + l];
+        out[static_cast<Eigen::Index>(a * d + i)] += s;
+      }
+    }
 }
 
 }  // namespace moreau
