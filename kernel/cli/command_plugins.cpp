@@ -1,5 +1,6 @@
 // `moreau plugins [--json]`: every plugin name by kind, with its parameters (and, for
 // modelizations, the table of state fields they store).
+#include <moreau/contact_fields.hpp>
 #include <moreau/modelization.hpp>
 #include <nlohmann/json.hpp>
 #include <ostream>
@@ -29,17 +30,31 @@ nlohmann::json schema_json(const Schema& s) {
   return params;
 }
 
-nlohmann::json fields_json(const Modelization& m) {
+/// A field table as `moreau plugins` prints it (both dimensions).
+nlohmann::json fields_json(const std::vector<FieldSpec>& table2, const std::vector<FieldSpec>& table3) {
   nlohmann::json out = nlohmann::json::array();
   for (int dim : {2, 3}) {
-    for (const auto& f : m.fields(dim)) {
+    for (const auto& f : dim == 2 ? table2 : table3) {
       if (f.components(dim) <= 0) continue;
-      const char* where = f.output == FieldOutput::frame ? "frame" : f.output == FieldOutput::bodies ? "bodies" : "none";
-      out.push_back({{"dimension", dim}, {"name", f.name}, {"components", f.components(dim)}, {"depths", f.depths},
-                     {"units", f.units}, {"output", where}, {"restart", f.restart}, {"doc", f.doc}});
+      const char* where = f.output == FieldOutput::frame ? "frame" : f.output == FieldOutput::once ? "once" : "none";
+      const char* needed = f.needed == Needed::always ? "always" : f.needed == Needed::contacts ? "contacts"
+                           : f.needed == Needed::forces ? "forces" : "imposed";
+      out.push_back({{"dimension", dim}, {"set", f.set}, {"name", f.name}, {"components", f.components(dim)},
+                     {"depths", f.depths}, {"units", f.units}, {"output", where}, {"restart", f.restart},
+                     {"persist", f.persist}, {"allocated", needed}, {"doc", f.doc}});
     }
   }
   return out;
+}
+
+/// The kernel's own sets: `bodies` and `contacts`.
+nlohmann::json kernel_sets_json() {
+  State st(2);
+  std::vector<FieldSpec> bodies;
+  for (const auto& f : st.set(sets::bodies).fields()) bodies.push_back(f.spec());
+  std::vector<FieldSpec> all = bodies;
+  for (const auto& f : contact_fields::table()) all.push_back(f);
+  return fields_json(all, all);
 }
 
 }  // namespace
@@ -60,11 +75,17 @@ int command_plugins(bool as_json, std::ostream& out, std::ostream& err) {
         if (auto* m = dynamic_cast<Modelization*>(obj.get())) {
           j["body_parameters_2d"] = schema_json(m->body_schema(2));
           j["body_parameters_3d"] = schema_json(m->body_schema(3));
-          j["fields"] = fields_json(*m);
+          j["node_set"] = m->node_set();
+          j["element_set"] = m->element_set();
+          j["node_dofs"] = {m->node_dofs(2), m->node_dofs(3)};
+          j["default_integrator"] = m->default_integrator();
+          j["fields"] = fields_json(m->fields(2), m->fields(3));
         }
       }
       all[kind_name(r.kind)].push_back(j);
     }
+    all["kernel"].push_back(nlohmann::json{{"name", "sets"}, {"doc", "the kernel's entity sets: bodies and contacts"},
+                                           {"parameters", nlohmann::json::array()}, {"fields", kernel_sets_json()}});
     if (as_json) {
       out << all.dump(2) << "\n";
       return 0;
@@ -90,7 +111,8 @@ int command_plugins(bool as_json, std::ostream& out, std::ostream& err) {
         if (p.contains("fields")) {
           out << "    state fields:\n";
           for (const auto& f : p["fields"])
-            out << "      " << f["dimension"].get<int>() << "D " << f["name"].get<std::string>() << " ["
+            out << "      " << f["dimension"].get<int>() << "D " << f["set"].get<std::string>() << "/"
+                << f["name"].get<std::string>() << " ["
                 << f["components"].get<int>() << "] " << f["units"].get<std::string>() << " ("
                 << f["output"].get<std::string>() << "): " << f["doc"].get<std::string>() << "\n";
         }

@@ -1,6 +1,11 @@
 #pragma once
 // The contact stages of a step (DESIGN §1): detection configuration, broad phase, narrow
 // phase, warm start, solve, store reactions. Built only for scenes with interactions.
+// The kernel's side of the seed's InteractionHandler: contactors are supported by nodes of
+// the modelizations' node sets; the contacts of a step are the rows of the State's
+// `contacts` set (moreau/contact_fields.hpp), rebuilt at warm_start with what persists
+// carried over by identity; the problem is built from the modelizations' pieces
+// (contact_assembly.hpp), so nothing here knows what kind of body is behind a contact.
 #include <cstdint>
 #include <memory>
 #include <moreau/broadphase.hpp>
@@ -13,11 +18,10 @@
 #include <string>
 #include <vector>
 
-#include "../io/output_writer.hpp"
 #include "../plugin/owned.hpp"
 #include "placement.hpp"
 #include "problem_export.hpp"
-#include "rigid_assembly.hpp"
+#include "contact_assembly.hpp"
 
 namespace moreau::kernel {
 
@@ -25,7 +29,9 @@ struct Contactor {
   int body = -1;
   int group = -1;
   Owned<Shape> shape;
-  Placement placement;  ///< in the body frame (origin: centre of mass); identity for most
+  Placement placement;  ///< in the frame of its node (rigid: the body frame, origin the centre of mass); identity for most
+  int model = -1;       ///< its body's modelization (index into the models)
+  std::size_t node = 0; ///< the node supporting it (row of its modelization's node set)
 };
 
 /// A detector for an ordered pair of shape names; `swap`: the detector's first shape is
@@ -47,6 +53,7 @@ class ContactStages {
   std::vector<DetectorUse> detectors;
   Owned<BroadPhase> broadphase;
   Owned<Solver> solver;
+  std::vector<ContactModel> models;  ///< every modelization of the scene with its integrator
   double alert = 0;
   bool stop_on_failure = false;
   std::unique_ptr<ProblemExport> exporter;  ///< null unless the scene has `export_problems`
@@ -55,15 +62,14 @@ class ContactStages {
   void broad_phase(StepContext& ctx);
   void narrow_phase(StepContext& ctx);
   void warm_start(StepContext& ctx);
-  void solve(StepContext& ctx, const Integrator& integrator);
+  void solve(StepContext& ctx);
   void store_reactions(StepContext& ctx);
 
-  /// The contacts of the last step, for the output.
-  io::ContactFrame frame(int dim, double h) const;
   long last_iterations() const { return report_.iterations; }
   double last_error() const { return report_.error; }
-  /// Restores the warm start of a restart (keys: nc × 3, impulses: nc × d).
-  void restore(const std::vector<int>& keys, const std::vector<double>& impulses, int dim);
+  /// A restart loaded the `contacts` set (keys and what persists) from its frame: the next
+  /// warm start continues from it, and the start-of-run overlap warning is not given.
+  void restored() { initial_overlaps_checked_ = true; }
 
  private:
   struct Detected {
@@ -76,22 +82,20 @@ class ContactStages {
   void warn_initial_overlaps(const StepContext& c);
   bool initial_overlaps_checked_ = false;
 
-  std::vector<double> poses_;  ///< per body: position (3) then rotation (4: 2D angle in [0])
-  std::vector<double> sweep_;  ///< per body: distance it may travel in the step (m)
-  /// Per contactor: world pose (same layout as poses_) and distance it may travel in the
-  /// step (its body's sweep, plus the rotation of an offset contactor).
+  /// Per contactor: world pose at the detection configuration (position 3, then rotation
+  /// 4: 2D angle in [0]) and distance it may travel in the step (its node's, plus the
+  /// rotation of an offset contactor).
   std::vector<double> contactor_poses_, contactor_sweep_;
   BroadPhaseInput bp_;
   std::vector<std::pair<int, int>> pairs_;
   std::vector<Detected> contacts_;
   std::vector<ContactPoint> scratch_;
-  RigidAssembly assembly_;
+  ContactSides sides_;
+  ContactAssembly assembly_;
   LocalProblem problem_;
   Eigen::VectorXd r_, u_;
   SolverReport report_;
-  // Warm start: previous step's keys (sorted) and local impulses.
-  std::vector<std::pair<std::uint64_t, std::size_t>> previous_keys_;
-  std::vector<double> previous_r_;
+  std::vector<std::pair<std::uint64_t, std::ptrdiff_t>> previous_keys_;  ///< scratch of warm_start
 };
 
 }  // namespace moreau::kernel

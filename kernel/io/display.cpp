@@ -23,12 +23,13 @@ std::array<double, 9> rotation_matrix(int dim, const double* r) {
 
 }  // namespace
 
-void add_contactor(DisplayMeshes& m, const DisplayMesh& mesh, int body, int contactor, const double offset[3],
+void add_contactor(DisplayMeshes& m, const DisplayMesh& mesh, int body, int node, int contactor, const double offset[3],
                    const double rotation[4]) {
   const int first = static_cast<int>(m.vertices());
   if (mesh.empty()) {
     m.points.insert(m.points.end(), {offset[0], offset[1], m.dimension == 2 ? 0.0 : offset[2]});
     m.point_body.push_back(body);
+    m.point_node.push_back(node);
     m.cells.insert(m.cells.end(), {xdmf_polyvertex, 1, first});
     m.cell_body.push_back(body);
     m.cell_contactor.push_back(contactor);
@@ -42,6 +43,7 @@ void add_contactor(DisplayMeshes& m, const DisplayMesh& mesh, int body, int cont
       m.points.push_back(offset[i] + R[3 * i] * s[0] + R[3 * i + 1] * s[1] + R[3 * i + 2] * s[2]);
     if (m.dimension == 2) m.points.back() = 0;
     m.point_body.push_back(body);
+    m.point_node.push_back(node);
   }
   std::size_t at = 0;
   for (const int k : mesh.sizes) {
@@ -63,15 +65,15 @@ void add_contactor(DisplayMeshes& m, const DisplayMesh& mesh, int body, int cont
   }
 }
 
-void world_points(const DisplayMeshes& m, std::size_t bodies, const double* position, const double* rotation,
+void world_points(const DisplayMeshes& m, std::size_t nodes, const double* position, const double* rotation,
                   std::vector<float>& out) {
   const int d = m.dimension, nr = d == 2 ? 1 : 4;
-  std::vector<std::array<double, 9>> R(bodies);  // once per body, not per vertex
-  for (std::size_t b = 0; b < bodies; ++b) R[b] = rotation_matrix(d, rotation + nr * b);
+  std::vector<std::array<double, 9>> R(nodes);  // once per node, not per vertex
+  for (std::size_t b = 0; b < nodes; ++b) R[b] = rotation_matrix(d, rotation + nr * b);
   const std::size_t nv = m.vertices();
   out.resize(nv * d);
   for (std::size_t v = 0; v < nv; ++v) {
-    const std::size_t b = static_cast<std::size_t>(m.point_body[v]);
+    const std::size_t b = static_cast<std::size_t>(m.point_node[v]);
     const double* p = &m.points[3 * v];
     const auto& r = R[b];
     for (int i = 0; i < d; ++i)

@@ -17,8 +17,9 @@ inline constexpr int xdmf_polyvertex = 1, xdmf_polygon = 3, xdmf_triangle = 4, x
 
 struct DisplayMeshes {
   int dimension = 3;
-  std::vector<double> points;       ///< vertices in their body frame, 3 values each (2D: z = 0), m
+  std::vector<double> points;       ///< vertices in the frame of their node, 3 values each (2D: z = 0), m
   std::vector<int> point_body;      ///< body of each vertex
+  std::vector<int> point_node;      ///< node of each vertex: index into the frame's node poses (NodePoses)
   std::vector<int> cells;           ///< XDMF Mixed connectivity: each cell's type, [vertex count,] vertices
   std::vector<int> cell_body;       ///< body of each cell
   std::vector<int> cell_contactor;  ///< contactor of each cell (index into /contactors)
@@ -26,16 +27,17 @@ struct DisplayMeshes {
   std::size_t cell_count() const { return cell_body.size(); }
 };
 
-/// Appends a contactor's mesh (in its own frame) moved into its body frame by its
-/// placement: p = offset + R_c v, with `rotation` a 2D angle in [0] or a 3D unit
-/// quaternion w x y z. An empty mesh becomes one vertex at the contactor's origin, so every
-/// contactor shows. Throws std::invalid_argument on an index out of the mesh's vertices.
-void add_contactor(DisplayMeshes& m, const DisplayMesh& mesh, int body, int contactor, const double offset[3],
+/// Appends a contactor's mesh (in its own frame) moved into its node's frame (rigid: the
+/// body frame) by its placement: p = offset + R_c v, with `rotation` a 2D angle in [0] or a
+/// 3D unit quaternion w x y z. `node` indexes the node poses of world_points. An empty mesh
+/// becomes one vertex at the contactor's origin, so every contactor shows. Throws
+/// std::invalid_argument on an index out of the mesh's vertices.
+void add_contactor(DisplayMeshes& m, const DisplayMesh& mesh, int body, int node, int contactor, const double offset[3],
                    const double rotation[4]);
 
-/// World positions of the vertices, x_b + R_b p, from the bodies' positions [nb, d] and
-/// rotations (2D: angles [nb]; 3D: unit quaternions [nb, 4]): d floats per vertex.
-void world_points(const DisplayMeshes& m, std::size_t bodies, const double* position, const double* rotation,
+/// World positions of the vertices, x_n + R_n p, from the node poses: positions [nn, d] and
+/// rotations (2D: angles [nn]; 3D: unit quaternions [nn, 4]): d floats per vertex.
+void world_points(const DisplayMeshes& m, std::size_t nodes, const double* position, const double* rotation,
                   std::vector<float>& out);
 
 }  // namespace moreau::io

@@ -1,7 +1,8 @@
 #include "display_io.hpp"
 
 #include <moreau/error.hpp>
-#include <moreau/rigid_fields.hpp>
+
+#include "node_poses.hpp"
 
 namespace moreau::io {
 
@@ -23,10 +24,10 @@ void write_display_header(hid_t root, const DisplayMeshes& m) {
 
 void write_display_frame(hid_t frame, const DisplayMeshes& m, const State& state) {
   const int d = m.dimension;
-  const double* x = state.field(rigid::position).data(Depth::begin);
-  const double* r = state.field(d == 2 ? rigid::angle : rigid::orientation).data(Depth::begin);
+  NodePoses poses;
+  node_poses(state, Depth::begin, poses);
   std::vector<float> world;
-  world_points(m, state.bodies(), x, r, world);
+  world_points(m, poses.size(), poses.position.data(), poses.rotation.data(), world);
   h5::Id g = h5::group(H5Gcreate2(frame, "display", H5P_DEFAULT, H5P_DEFAULT, H5P_DEFAULT));
   if (!g) throw RunError("HDF5 write failed: group display");
   h5::write_floats(g.get(), "points", world.data(), m.vertices(), d);

@@ -12,7 +12,7 @@ namespace moreau::io {
 /// cell_contactor; attribute `cells` (the cell count, which an XDMF topology needs).
 void write_display_header(hid_t root, const DisplayMeshes& m);
 
-/// `display/points` [nv, d] float32 under a frame group, from the state's body poses
+/// `display/points` [nv, d] float32 under a frame group, from the state's node poses
 /// (Depth::begin: the step's final values at stage `output`).
 void write_display_frame(hid_t frame, const DisplayMeshes& m, const State& state);
 

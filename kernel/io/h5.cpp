@@ -82,6 +82,10 @@ void attribute_string(hid_t where, const std::string& name, const std::string& v
   attribute(where, name, t.get(), t.get(), &p);
 }
 
+void link(hid_t where, const std::string& target, const std::string& name) {
+  check(H5Lcreate_hard(where, target.c_str(), where, name.c_str(), H5P_DEFAULT, H5P_DEFAULT), "link " + name + " -> " + target);
+}
+
 bool exists(hid_t where, const std::string& path) {
   // Check each level: H5Lexists fails on a missing intermediate group.
   std::string partial;

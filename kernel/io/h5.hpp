@@ -55,6 +55,8 @@ void attribute_double(hid_t where, const std::string& name, double value);
 void attribute_long(hid_t where, const std::string& name, long value);
 void attribute_string(hid_t where, const std::string& name, const std::string& value);
 
+/// A second name `name` (in `where`) for the object at `target` (HDF5 hard link: no copy).
+void link(hid_t where, const std::string& target, const std::string& name);
 bool exists(hid_t where, const std::string& path);
 /// Reads a dataset of doubles; `shape` gets its dimensions. Throws InputError on faults.
 std::vector<double> read_doubles(hid_t where, const std::string& path, std::vector<hsize_t>* shape,

@@ -5,7 +5,10 @@
 #include <filesystem>
 #include <moreau/error.hpp>
 
+#include <moreau/node_fields.hpp>
+
 #include "display_io.hpp"
+#include "field_io.hpp"
 #include "h5.hpp"
 #include "xdmf.hpp"
 
@@ -21,6 +24,17 @@ std::string frame_name(long step) {
 }
 
 std::string frames_folder(const std::string& h5_path) { return h5_path + ".frames"; }
+
+std::string legacy_node_set(const State& st) {
+  if (st.models().size() != 1) return "";
+  const std::string& nodes = st.models()[0].nodes;
+  if (st.set(nodes).rows() != st.bodies()) return "";
+  for (std::size_t b = 0; b < st.bodies(); ++b) {
+    const BodyRows r = st.body(b);
+    if (r.nodes != 1 || r.first_node != b) return "";
+  }
+  return nodes;
+}
 
 namespace {
 
@@ -48,13 +62,20 @@ void publish_file(const std::string& from, const std::string& to) {
   }
 }
 
-/// A per-body dataset of /bodies, kept to rewrite the header.
-struct BodyColumn {
-  std::string name;
-  bool as_int8 = false;
-  std::vector<double> values;
-  hsize_t components = 1;
+/// A constant field (output `once`), kept to rewrite the header: a copy of its values at
+/// the start, in a one-field set of its own so that write_field writes it.
+struct Column {
+  std::string set;
+  std::unique_ptr<EntitySet> values;
 };
+
+/// Group `name` of `where`, created if missing.
+h5::Id group_of(hid_t where, const std::string& name) {
+  if (h5::exists(where, name)) return h5::group(H5Gopen2(where, name.c_str(), H5P_DEFAULT));
+  h5::Id g = h5::group(H5Gcreate2(where, name.c_str(), H5P_DEFAULT, H5P_DEFAULT, H5P_DEFAULT));
+  if (!g) throw RunError("HDF5 write failed: group " + name);
+  return g;
+}
 
 }  // namespace
 
@@ -63,8 +84,11 @@ struct OutputWriter::Impl {
   std::string folder;  // one file per frame while the run goes on
   OutputHeader header;
   std::vector<std::string> names;
-  std::vector<BodyColumn> columns;
+  std::vector<ModelInfo> models;
+  std::vector<Column> columns;
   std::size_t bodies = 0;
+  std::string legacy;  ///< the node set also written at moreau-output/1's places, or ""
+  XdmfLayout layout;
   std::vector<XdmfFrame> frames;  // every frame written, in step order
   bool open = true;
 
@@ -81,13 +105,22 @@ struct OutputWriter::Impl {
 
   void keep_header(const State& state) {
     names = state.names();
+    models = state.models();
     bodies = state.bodies();
-    for (const auto& f : state.fields()) {
-      if (f.spec().output != FieldOutput::bodies) continue;
-      BodyColumn c{f.name(), f.spec().as_int8, {}, static_cast<hsize_t>(f.components())};
-      c.values.assign(f.data(Depth::begin), f.data(Depth::begin) + f.bodies() * f.components());
-      columns.push_back(std::move(c));
-    }
+    legacy = legacy_node_set(state);
+    for (const auto& set : state.sets())
+      for (const auto& f : set.fields()) {
+        if (f.spec().output != FieldOutput::once) continue;
+        Column c{set.name(), std::make_unique<EntitySet>(set.name(), state.dimension())};
+        FieldSpec spec = f.spec();
+        spec.depths = 1;
+        spec.needed = Needed::always;
+        c.values->add_rows(f.rows());
+        Field& copy = c.values->declare(spec);
+        std::copy(f.data(Depth::begin), f.data(Depth::begin) + f.rows() * f.components(), copy.data());
+        columns.push_back(std::move(c));
+      }
+    layout = xdmf_layout(state, header.topologies, legacy);
   }
 
   /// The display meshes never change and can be large (tens of MB for 10⁵ spheres): while
@@ -105,22 +138,42 @@ struct OutputWriter::Impl {
   }
 
   void write_header(hid_t root, bool gather) const {
-    h5::attribute_string(root, "format", "moreau-output/1");
+    h5::attribute_string(root, "format", output_format);
     h5::attribute_long(root, "dimension", header.dimension);
     h5::attribute_double(root, "time_step", header.time_step);
     h5::attribute_string(root, "scene", header.scene_text);
-    h5::Id g = h5::group(H5Gcreate2(root, "bodies", H5P_DEFAULT, H5P_DEFAULT, H5P_DEFAULT));
-    h5::write_strings(g.get(), "name", names);
-    for (const auto& c : columns) {
-      if (c.as_int8) {
-        std::vector<signed char> v(bodies);
-        for (std::size_t i = 0; i < bodies; ++i) v[i] = static_cast<signed char>(c.values[i * c.components]);
-        h5::write_int8(g.get(), c.name, v);
-      } else {
-        h5::write_doubles(g.get(), c.name, c.values.data(), bodies, c.components == 1 ? 0 : c.components);
+    {
+      h5::Id g = group_of(root, sets::bodies);
+      h5::write_strings(g.get(), "name", names);
+      std::vector<std::string> model_names, node_sets, element_sets;
+      for (const auto& m : models) {
+        model_names.push_back(m.name);
+        node_sets.push_back(m.nodes);
+        element_sets.push_back(m.elements);
       }
+      h5::Id mg = group_of(root, "models");
+      h5::write_strings(mg.get(), "name", model_names);
+      h5::write_strings(mg.get(), "nodes", node_sets);
+      h5::write_strings(mg.get(), "elements", element_sets);
+      std::vector<int> dofs;
+      for (const auto& m : models) dofs.push_back(m.node_dofs);
+      h5::write_int32(mg.get(), "node_dofs", dofs.data(), dofs.size(), 0);
     }
-    g.reset();
+    // Every set's constant fields in /<set>/ (the bodies set's in /bodies), and for a
+    // rigid-only scene the node set's also in /bodies, as moreau-output/1 had them.
+    for (const auto& c : columns) {
+      h5::Id g = group_of(root, c.set);
+      const Field& f = c.values->fields().front();
+      write_field(g.get(), f.name(), f, Depth::begin);
+      if (c.set == legacy && f.name() != body_fields::body)
+        h5::link(root, "/" + c.set + "/" + f.name(), std::string(sets::bodies) + "/" + f.name());
+    }
+    for (const auto& t : header.topologies) {
+      h5::Id g = group_of(root, t.elements);
+      h5::write_int32(g.get(), "cells", t.cells.data(), t.cells.size(), 0);
+      h5::attribute_long(g.get(), "cells", static_cast<long>(t.count));
+      h5::attribute_string(g.get(), "nodes", t.nodes);
+    }
     write_contactors(root);
     if (!header.display) return;
     if (gather) {
@@ -138,11 +191,12 @@ struct OutputWriter::Impl {
     const auto& cs = header.contactors;
     if (cs.empty()) return;
     const int d = header.dimension;
-    std::vector<int> body;
+    std::vector<int> body, node;
     std::vector<std::string> shape, group;
     std::vector<double> offset, rotation;
     for (const auto& c : cs) {
       body.push_back(c.body);
+      node.push_back(c.local_node);
       shape.push_back(c.shape);
       group.push_back(c.group);
       for (int k = 0; k < d; ++k) offset.push_back(c.offset[k]);
@@ -150,6 +204,7 @@ struct OutputWriter::Impl {
     }
     h5::Id g = h5::group(H5Gcreate2(root, "contactors", H5P_DEFAULT, H5P_DEFAULT, H5P_DEFAULT));
     h5::write_int32(g.get(), "body", body.data(), cs.size(), 0);
+    h5::write_int32(g.get(), "node", node.data(), cs.size(), 0);
     h5::write_strings(g.get(), "shape", shape);
     h5::write_strings(g.get(), "group", group);
     h5::write_doubles(g.get(), "offset", offset.data(), cs.size(), d);
@@ -192,7 +247,7 @@ struct OutputWriter::Impl {
     // Only the frames OUT.h5 lists: the list is rewritten less often than frames are
     // written, and a description naming a frame the file lacks fails in ParaView.
     const std::vector<XdmfFrame> listed_frames(frames.begin(), frames.begin() + static_cast<long>(listed));
-    write_xdmf_file(path, header.dimension, listed_frames, bodies, shapes);
+    write_xdmf_file(path, header.dimension, listed_frames, bodies, shapes, layout);
   }
 };
 
@@ -305,49 +360,57 @@ std::unique_ptr<OutputWriter> OutputWriter::append(const std::string& path, cons
   return std::unique_ptr<OutputWriter>(new OutputWriter(std::move(impl)));
 }
 
-void OutputWriter::write_frame(long step, double time, const State& state, long iterations, double error,
-                               const ContactFrame* contacts) {
+void OutputWriter::write_frame(long step, double time, const State& state, long iterations, double error) {
   Impl& m = *impl_;
   const std::string name = frame_name(step);
   const std::string file = m.frame_file(step);
   const std::string part = file + ".part";
   h5::Id f = create_file(part);
   if (!f) throw RunError("cannot write frame " + name + " to " + part);
+  std::size_t contacts = 0;
+  bool with_contacts = false;
   {
     h5::Id g = h5::group(H5Gcreate2(f.get(), "frame", H5P_DEFAULT, H5P_DEFAULT, H5P_DEFAULT));
     h5::attribute_double(g.get(), "time", time);
     h5::attribute_long(g.get(), "step", step);
-    for (const auto& fd : state.fields()) {
-      if (fd.spec().output != FieldOutput::frame) continue;
-      h5::write_doubles(g.get(), fd.name(), fd.data(Depth::begin), fd.bodies(),
-                        fd.components() == 1 ? 0 : fd.components());
+    // Every set's frame fields in <set>/ (the end-of-step values: depths were swapped).
+    for (const auto& set : state.sets()) {
+      h5::Id sg;
+      for (const auto& fd : set.fields()) {
+        if (fd.spec().output != FieldOutput::frame) continue;
+        if (!sg) sg = group_of(g.get(), set.name());
+        write_field(sg.get(), fd.name(), fd, Depth::begin);
+        if (set.name() == m.legacy) h5::link(g.get(), set.name() + "/" + fd.name(), fd.name());
+      }
+      if (set.name() == sets::contacts) {
+        with_contacts = true;
+        contacts = set.rows();
+      }
+    }
+    // Without the rigid-only layout, a reference point per body (the mean of its nodes'
+    // positions) for the force network and for readers.
+    if (m.legacy.empty()) {
+      const int d = state.dimension();
+      std::vector<double> x(state.bodies() * d, 0.0);
+      for (std::size_t b = 0; b < state.bodies(); ++b) {
+        if (!state.has_node_field(b, node_fields::position)) continue;
+        const auto p = state.node_values(b, node_fields::position, Depth::begin);
+        const std::size_t n = p.size() / d;
+        for (std::size_t i = 0; i < n; ++i)
+          for (int k = 0; k < d; ++k) x[b * d + k] += p[i * d + k] / static_cast<double>(n);
+      }
+      h5::Id bg = group_of(g.get(), sets::bodies);
+      h5::write_doubles(bg.get(), node_fields::position, x.data(), state.bodies(), d);
     }
     h5::Id solver = h5::group(H5Gcreate2(g.get(), "solver", H5P_DEFAULT, H5P_DEFAULT, H5P_DEFAULT));
     h5::attribute_long(solver.get(), "iterations", iterations);
     h5::attribute_double(solver.get(), "error", error);
-    if (contacts) {
-      const int d = m.header.dimension;
-      const std::size_t nc = contacts->size();
-      h5::Id c = h5::group(H5Gcreate2(g.get(), "contacts", H5P_DEFAULT, H5P_DEFAULT, H5P_DEFAULT));
-      h5::write_int32(c.get(), "bodies", contacts->bodies.data(), nc, 2);
-      h5::write_doubles(c.get(), "point", contacts->point.data(), nc, d);
-      h5::write_doubles(c.get(), "normal", contacts->normal.data(), nc, d);
-      h5::write_doubles(c.get(), "gap", contacts->gap.data(), nc, 0);
-      h5::write_doubles(c.get(), "impulse", contacts->impulse.data(), nc, d);
-      h5::write_doubles(c.get(), "force", contacts->force.data(), nc, d);
-      // The normal force on its own, for viewers that size lines or glyphs by a scalar.
-      std::vector<double> normal_force(nc);
-      for (std::size_t i = 0; i < nc; ++i) normal_force[i] = contacts->impulse[d * i] / m.header.time_step;
-      h5::write_doubles(c.get(), "normal_force", normal_force.data(), nc, 0);
-      h5::write_int8(c.get(), "status", contacts->status);
-      h5::write_int32(c.get(), "key", contacts->keys.data(), nc, 3);
-    }
     if (m.header.display) write_display_frame(g.get(), *m.header.display, state);
   }
   finish(f, part);
   publish_file(part, file);
   if (!m.frames.empty() && m.frames.back().step == step) m.frames.pop_back();  // rewritten (last frame)
-  XdmfFrame listed{step, time, contacts ? contacts->size() : 0};
+  XdmfFrame listed{step, time, with_contacts ? contacts : 0};
   listed.display = m.header.display != nullptr;
   m.frames.push_back(listed);
   // The list costs O(frames) to rewrite: keep it under a tenth of the time between rewrites.

@@ -1,6 +1,10 @@
 #pragma once
-// The HDF5 output file of a run (DESIGN §3.3, `format = "moreau-output/1"`), with the
-// ParaView description (XDMF) beside it.
+// The HDF5 output file of a run (docs/output.md, `format = "moreau-output/2"`), with the
+// ParaView description (XDMF) beside it. What is written is the State's field tables:
+// every set's constant fields in /<set>/, its frame fields in /frames/N/<set>/; a scene
+// whose bodies are all of one one-node modelization (rigid-only scenes) also has them where
+// moreau-output/1 put them (/bodies/<field>, /frames/N/<field>), as second names of the
+// same datasets (HDF5 hard links: nothing is stored twice).
 //
 // Crash safety. HDF5 updates a file in place through many metadata blocks, so a process
 // killed during a write can leave a file that no longer opens. The writer therefore never
@@ -35,9 +39,20 @@ namespace moreau::io {
 /// and placement in the body frame of the output (whose origin is the centre of mass).
 struct ContactorInfo {
   int body = -1;
+  int model = 0;         ///< its body's modelization (index into State::models())
+  std::size_t node = 0;  ///< its supporting node: row of the modelization's node set
+  int local_node = 0;    ///< the same node counted within its body (the scene's `node`)
   std::string shape, group;
   std::array<double, 3> offset{0, 0, 0};
   std::array<double, 4> rotation{1, 0, 0, 0};  ///< 2D: angle in [0]; 3D: unit quaternion w x y z
+};
+
+/// A modelization's element topology for readers and the viewer: `/<set>/cells`.
+struct SetTopology {
+  std::string elements;   ///< the element set
+  std::string nodes;      ///< the node set its cells index
+  std::vector<int> cells; ///< XDMF Mixed connectivity over the node set's rows
+  std::size_t count = 0;  ///< cells
 };
 
 struct OutputHeader {
@@ -45,22 +60,10 @@ struct OutputHeader {
   double time_step = 0;
   std::string scene_text;  ///< the scene JSON, verbatim
   std::vector<ContactorInfo> contactors;  ///< every contactor, in scene order
+  std::vector<SetTopology> topologies;    ///< modelizations with elements
   /// The shapes drawn in the viewer (`/display`, and display/points in every frame); null
   /// with output `display: "points"`. Shared: it can be large and the writer only reads it.
   std::shared_ptr<const DisplayMeshes> display;
-};
-
-/// The contacts of a frame (DESIGN §3.3), nc rows each.
-struct ContactFrame {
-  std::vector<int> bodies;          ///< nc × 2
-  std::vector<double> point;        ///< nc × d
-  std::vector<double> normal;       ///< nc × d
-  std::vector<double> gap;          ///< nc
-  std::vector<double> impulse;      ///< nc × d, local frame, normal first
-  std::vector<double> force;        ///< nc × d, world frame
-  std::vector<signed char> status;  ///< nc: 0 open, 1 sticking, 2 sliding
-  std::vector<int> keys;            ///< nc × 3: contactor, contactor, feature (warm start on restart)
-  std::size_t size() const { return gap.size(); }
 };
 
 class OutputWriter {
@@ -74,8 +77,7 @@ class OutputWriter {
   /// Without close(), the frames written so far are still gathered into one file.
   ~OutputWriter();
 
-  void write_frame(long step, double time, const State& state, long solver_iterations, double solver_error,
-                   const ContactFrame* contacts);
+  void write_frame(long step, double time, const State& state, long solver_iterations, double solver_error);
   void close();
 
   const std::string& path() const;
@@ -91,5 +93,14 @@ std::string frame_name(long step);
 
 /// The folder holding one file per frame while a run writes OUT.h5: OUT.h5.frames.
 std::string frames_folder(const std::string& h5_path);
+
+/// The output format this moreau writes, and the one before it (still read: restart).
+inline constexpr const char* output_format = "moreau-output/2";
+inline constexpr const char* output_format_v1 = "moreau-output/1";
+
+/// Whether the state's bodies are exactly the rows of one modelization's node set (one
+/// node each, in body order: rigid-only scenes): its fields are then also written where
+/// moreau-output/1 had them. Returns that node set, or "".
+std::string legacy_node_set(const State& state);
 
 }  // namespace moreau::io

@@ -3,6 +3,7 @@
 #include <algorithm>
 #include <moreau/error.hpp>
 
+#include "field_io.hpp"
 #include "h5.hpp"
 #include "output_writer.hpp"
 
@@ -20,8 +21,9 @@ h5::Id open_output(const std::string& path) {
   } catch (const InputError&) {
     throw InputError("/", "not a moreau output file (no \"format\" attribute)", path);
   }
-  if (format != "moreau-output/1")
-    throw InputError("/", "unsupported output format \"" + format + "\" (expected moreau-output/1)", path);
+  if (format != output_format && format != output_format_v1)
+    throw InputError("/", "unsupported output format \"" + format + "\" (expected " + output_format + " or " +
+                              output_format_v1 + ")", path);
   return f;
 }
 
@@ -63,27 +65,32 @@ RestartFrame read_restart(const std::string& path, std::optional<long> step, Sta
     h5::Id g = h5::group(H5Gopen2(f.get(), fp.c_str(), H5P_DEFAULT));
     r.time = h5::read_attribute_double(g.get(), "time", path, fp);
   }
-  for (auto& field : state.fields()) {
-    if (!field.spec().restart) continue;
-    const std::string dp = fp + "/" + field.name();
-    auto v = h5::read_doubles(f.get(), dp, nullptr, path);
-    if (v.size() != field.bodies() * field.components())
-      throw InputError(dp, "expected " + std::to_string(field.bodies() * field.components()) + " values, found " +
-                               std::to_string(v.size()), path);
-    for (int d = 0; d < field.spec().depths; ++d) std::copy(v.begin(), v.end(), field.data(static_cast<Depth>(d)));
-  }
+  // The modelizations must be the scene's (a moreau-output/1 file has rigid bodies only).
+  std::vector<std::string> models;
+  for (const auto& m : state.models()) models.push_back(m.name);
+  const std::vector<std::string> file_models =
+      h5::exists(f.get(), "/models/name") ? h5::read_strings(f.get(), "/models/name", path) : std::vector<std::string>{"rigid"};
+  if (file_models != models)
+    throw InputError("/models/name", "the file's modelizations do not match the scene's", path);
+  const std::string legacy = legacy_node_set(state);
   // Without the previous step's impulses the solver would start cold and end elsewhere
-  // within its tolerance: the continuation would not be bit-identical.
-  const std::string kp = fp + "/contacts/key", ip = fp + "/contacts/impulse";
-  if (h5::exists(f.get(), kp)) {
-    std::vector<hsize_t> ks, is;
-    const auto keys = h5::read_doubles(f.get(), kp, &ks, path);
-    r.contact_impulses = h5::read_doubles(f.get(), ip, &is, path);
-    const std::size_t nc = ks.empty() ? 0 : ks[0];
-    if (ks.size() != 2 || ks[1] != 3) throw InputError(kp, "expected an nc × 3 dataset", path);
-    if (is.size() != 2 || is[0] != nc || static_cast<int>(is[1]) != state.dimension())
-      throw InputError(ip, "expected " + std::to_string(nc) + " × " + std::to_string(state.dimension()) + " impulses", path);
-    r.contact_keys.assign(keys.begin(), keys.end());
+  // within its tolerance: the continuation would not be bit-identical. The contacts set
+  // takes the frame's rows.
+  if (EntitySet* contacts = state.find_set(sets::contacts)) {
+    const std::string kp = fp + "/" + sets::contacts + "/key";
+    const auto dims = h5::dimensions(f.get(), kp);
+    contacts->rebuild(std::vector<std::ptrdiff_t>(dims.empty() ? 0 : dims[0], -1));
+  }
+  for (auto& set : state.sets()) {
+    if (set.name() == sets::contacts && set.rows() == 0) continue;
+    for (auto& field : set.fields()) {
+      const bool frame = field.spec().output == FieldOutput::frame;
+      if (!field.spec().restart && !(frame && set.name() == sets::contacts)) continue;
+      std::string dp = fp + "/" + set.name() + "/" + field.name();
+      if (!h5::exists(f.get(), dp) && set.name() == legacy) dp = fp + "/" + field.name();  // moreau-output/1
+      if (!field.spec().restart && !h5::exists(f.get(), dp)) continue;  // shown, not needed
+      read_field(f.get(), dp, field, path);
+    }
   }
   return r;
 }

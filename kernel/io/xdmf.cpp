@@ -3,11 +3,44 @@
 #include <cstdio>
 #include <filesystem>
 #include <fstream>
+#include <moreau/node_fields.hpp>
 #include <sstream>
+
+#include "output_writer.hpp"
 
 namespace moreau::io {
 
 namespace fs = std::filesystem;
+
+XdmfLayout xdmf_layout(const State& st, const std::vector<SetTopology>& topologies, const std::string& legacy) {
+  XdmfLayout out;
+  out.legacy = !legacy.empty();
+  if (out.legacy) return out;
+  auto frame_fields = [](const EntitySet& set) {
+    std::vector<std::pair<std::string, int>> v;
+    for (const auto& f : set.fields())
+      if (f.spec().output == FieldOutput::frame) v.emplace_back(f.name(), f.components());
+    return v;
+  };
+  for (const auto& m : st.models()) {
+    const EntitySet& nodes = st.set(m.nodes);
+    const Field* x = nodes.find(node_fields::position);
+    if (!x || x->spec().output != FieldOutput::frame) continue;  // nothing to place them
+    XdmfSet s;
+    s.nodes = m.nodes;
+    s.rows = nodes.rows();
+    s.node_fields = frame_fields(nodes);
+    for (const auto& t : topologies)
+      if (t.elements == m.elements && t.count > 0) {
+        s.elements = t.elements;
+        s.cells = t.count;
+        s.connectivity = t.cells.size();
+        s.element_fields = frame_fields(st.set(m.elements));
+      }
+    out.sets.push_back(std::move(s));
+  }
+  return out;
+}
 
 std::string xdmf_path(const std::string& h5_path) {
   fs::path p(h5_path);
@@ -56,6 +89,13 @@ struct Writer {
   int d;
   const char* geometry;
   std::size_t nb;
+  const XdmfLayout& layout;
+
+  /// Where the frames hold a point per body: the positions (rigid-only scenes) or the
+  /// bodies' reference points.
+  std::string body_points(long step) const {
+    return frame_path(step) + (layout.legacy ? "/position" : "/bodies/position");
+  }
 
   /// A frame without contacts still has its grid (so every collection spans the same
   /// times), with no cells. Its points are the bodies' (any existing array does): an
@@ -63,8 +103,42 @@ struct Writer {
   void empty_grid(const XdmfFrame& f) {
     os << "      <Topology TopologyType=\"Polyvertex\" NumberOfElements=\"0\" NodesPerElement=\"1\"/>\n";
     os << "      <Geometry GeometryType=\"" << geometry << "\">";
-    item(os, file, frame_path(f.step) + "/position", nb, d);
+    item(os, file, body_points(f.step), nb, d);
     os << "</Geometry>\n";
+  }
+
+  /// moreau-output/2 scenes with several modelizations: a grid per modelization, its nodes
+  /// as points or its elements as cells, with every frame field of its sets.
+  void model_sets(const std::vector<XdmfFrame>& frames) {
+    for (const auto& set : layout.sets) {
+      os << "  <Grid Name=\"" << set.nodes << "\" GridType=\"Collection\" CollectionType=\"Temporal\">\n";
+      for (const auto& f : frames) {
+        const std::string fp = frame_path(f.step);
+        grid_start(os, set.nodes.c_str(), f);
+        if (set.elements.empty()) {
+          os << "      <Topology TopologyType=\"Polyvertex\" NumberOfElements=\"" << set.rows << "\" NodesPerElement=\"1\"/>\n";
+        } else {
+          os << "      <Topology TopologyType=\"Mixed\" NumberOfElements=\"" << set.cells << "\">";
+          item(os, file, "/" + set.elements + "/cells", set.connectivity, 0, i32);
+          os << "</Topology>\n";
+        }
+        os << "      <Geometry GeometryType=\"" << geometry << "\">";
+        item(os, file, fp + "/" + set.nodes + "/position", set.rows, d);
+        os << "</Geometry>\n";
+        auto attributes = [&](const std::string& group, const std::vector<std::pair<std::string, int>>& fields,
+                              std::size_t rows, const char* center) {
+          for (const auto& [name, c] : fields) {
+            const char* kind = c == 1 ? "Scalar" : c == d ? "Vector" : c == 4 ? "Matrix" : nullptr;
+            if (!kind || name == node_fields::position) continue;
+            attribute(os, name.c_str(), kind, file, fp + "/" + group + "/" + name, rows, c == 1 ? 0 : c, f64, center);
+          }
+        };
+        attributes(set.nodes, set.node_fields, set.rows, "Node");
+        if (!set.elements.empty()) attributes(set.elements, set.element_fields, set.cells, "Cell");
+        os << "   </Grid>\n";
+      }
+      os << "  </Grid>\n";
+    }
   }
 
   void bodies(const std::vector<XdmfFrame>& frames) {
@@ -151,7 +225,7 @@ struct Writer {
       os << "      <Topology TopologyType=\"Polyline\" NumberOfElements=\"" << nc << "\" NodesPerElement=\"2\">";
       item(os, file, cp + "/bodies", nc, 2, i32);
       os << "</Topology>\n      <Geometry GeometryType=\"" << geometry << "\">";
-      item(os, file, fp + "/position", nb, d);
+      item(os, file, body_points(f.step), nb, d);
       os << "</Geometry>\n";
       if (f.normal_force) attribute(os, "normal_force", "Scalar", file, cp + "/normal_force", nc, 0, f64, "Cell");
       attribute(os, "force", "Vector", file, cp + "/force", nc, d, f64, "Cell");
@@ -165,12 +239,13 @@ struct Writer {
 }  // namespace
 
 void write_xdmf_file(const std::string& h5_path, int d, const std::vector<XdmfFrame>& frames, std::size_t nb,
-                     const XdmfDisplay& display) {
+                     const XdmfDisplay& display, const XdmfLayout& layout) {
   std::ostringstream os;
   os.precision(17);
-  Writer w{os, fs::path(h5_path).filename().string(), d, d == 2 ? "XY" : "XYZ", nb};
+  Writer w{os, fs::path(h5_path).filename().string(), d, d == 2 ? "XY" : "XYZ", nb, layout};
   os << "<?xml version=\"1.0\" ?>\n<Xdmf Version=\"3.0\">\n <Domain>\n";
-  w.bodies(frames);
+  if (layout.legacy) w.bodies(frames);
+  else w.model_sets(frames);
   bool any_display = false, any_contacts = false;
   for (const auto& f : frames) {
     any_display |= f.display;

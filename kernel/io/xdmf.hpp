@@ -9,6 +9,7 @@
 //    normal_force, force and status on the lines (Tube, colour by force).
 // Every array is a reference into the HDF5 file; nothing is copied.
 #include <cstddef>
+#include <moreau/state.hpp>
 #include <string>
 #include <vector>
 
@@ -29,11 +30,32 @@ struct XdmfDisplay {
   std::size_t connectivity = 0;  ///< length of /display/cells
 };
 
+/// What the frames hold beyond moreau-output/1's layout. `legacy`: a rigid-only scene,
+/// described as before (a "bodies" grid of points from /frames/N/position). Otherwise one
+/// grid per modelization: its nodes (geometry /frames/N/<nodes>/position) as points, or as
+/// the cells of its element set (/<elements>/cells) with the element fields on them; the
+/// force network joins the bodies' reference points /frames/N/bodies/position.
+struct XdmfSet {
+  std::string nodes;
+  std::size_t rows = 0;
+  std::vector<std::pair<std::string, int>> node_fields;  ///< frame fields: name, components
+  std::string elements;                                   ///< "" : points only
+  std::size_t cells = 0, connectivity = 0;
+  std::vector<std::pair<std::string, int>> element_fields;
+};
+struct XdmfLayout {
+  bool legacy = true;
+  std::vector<XdmfSet> sets;
+};
+struct SetTopology;
+/// The layout of a state's output (`legacy`: the node set of a rigid-only scene, or "").
+XdmfLayout xdmf_layout(const State& state, const std::vector<SetTopology>& topologies, const std::string& legacy);
+
 /// Path of the description for an output file: OUT.h5 → OUT.xmf.
 std::string xdmf_path(const std::string& h5_path);
 
 /// Writes the description (to a temporary file, then renamed over the old one).
 void write_xdmf_file(const std::string& h5_path, int dimension, const std::vector<XdmfFrame>& frames,
-                     std::size_t bodies, const XdmfDisplay& display = {});
+                     std::size_t bodies, const XdmfDisplay& display = {}, const XdmfLayout& layout = {});
 
 }  // namespace moreau::io

@@ -16,8 +16,7 @@ class FrameSink {
   virtual ~FrameSink() = default;
   /// The state after `step` completed steps (time = step·h), end-of-step values in
   /// Depth::begin (depths were swapped at end_step).
-  virtual void write_frame(long step, double time, const State& state, const SolverInfo& solver,
-                           const io::ContactFrame* contacts) = 0;
+  virtual void write_frame(long step, double time, const State& state, const SolverInfo& solver) = 0;
   /// The run ended normally: finalise (the file is valid before this too).
   virtual void close() = 0;
 };

@@ -13,9 +13,8 @@ namespace {
 class Hdf5Sink : public FrameSink {
  public:
   explicit Hdf5Sink(std::unique_ptr<io::OutputWriter> w) : w_(std::move(w)) {}
-  void write_frame(long step, double time, const State& state, const SolverInfo& solver,
-                   const io::ContactFrame* contacts) override {
-    w_->write_frame(step, time, state, solver.iterations, solver.error, contacts);
+  void write_frame(long step, double time, const State& state, const SolverInfo& solver) override {
+    w_->write_frame(step, time, state, solver.iterations, solver.error);
   }
   void close() override { w_->close(); }
 
@@ -26,7 +25,7 @@ class Hdf5Sink : public FrameSink {
 }  // namespace
 
 std::unique_ptr<FrameSink> open_output(const World& world, const std::string& path, std::optional<long> continue_after) {
-  io::OutputHeader header{world.dimension, world.h, world.scene_text, world.contactor_info, world.display};
+  io::OutputHeader header{world.dimension, world.h, world.scene_text, world.contactor_info, world.topologies, world.display};
   if (continue_after)
     return std::make_unique<Hdf5Sink>(io::OutputWriter::append(path, header, world.state, *continue_after));
   return std::make_unique<Hdf5Sink>(io::OutputWriter::create(path, header, world.state));
@@ -34,7 +33,7 @@ std::unique_ptr<FrameSink> open_output(const World& world, const std::string& pa
 
 long load_restart(World& world, const std::string& file, std::optional<long> frame) {
   const io::RestartFrame r = io::read_restart(file, frame, world.state);
-  if (world.contacts) world.contacts->restore(r.contact_keys, r.contact_impulses, world.dimension);
+  if (world.contacts) world.contacts->restored();
   return r.step;
 }
 

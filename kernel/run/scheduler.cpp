@@ -3,7 +3,7 @@
 #include <algorithm>
 #include <cmath>
 #include <moreau/error.hpp>
-#include <moreau/imposed_velocity.hpp>
+#include <moreau/node_fields.hpp>
 #include <ostream>
 
 #include "progress.hpp"
@@ -52,51 +52,76 @@ void Scheduler::build_stages() {
   if (!w_.drivers.empty()) stages_[static_cast<int>(Stage::begin_step)] = [this](StepContext& c) { apply_drivers(c); };
   if (!w_.forces.empty()) {
     stages_[static_cast<int>(Stage::external_forces)] = [this](StepContext& c) {
-      for (const char* name : {"force", "torque"}) {
-        Field& f = c.state.field(name);
-        std::fill(f.data(), f.data() + f.bodies() * f.components(), 0.0);
-      }
+      // The loads of the step (fields allocated only with force plugins) start from zero.
+      for (auto& set : c.state.sets())
+        for (auto& f : set.fields())
+          if (f.spec().needed == Needed::forces) std::fill(f.data(), f.data() + f.rows() * f.components(), 0.0);
       for (auto& f : w_.forces) f->apply(c);
     };
   }
-  if (w_.model && w_.model->has_bulk()) stages_[static_cast<int>(Stage::bulk)] = [this](StepContext& c) { w_.model->bulk(c); };
-  stages_[static_cast<int>(Stage::free_velocity)] = [this](StepContext& c) { w_.integrator->free_velocity(c); };
+  // Each modelization's stages, paired with its integrator's, in the order of the models.
+  bool bulk = false;
+  for (const auto& m : w_.models) bulk = bulk || m.modelization->has_bulk();
+  if (bulk)
+    stages_[static_cast<int>(Stage::bulk)] = [this](StepContext& c) {
+      for (auto& m : w_.models)
+        if (m.modelization->has_bulk()) m.modelization->bulk(c);
+    };
+  stages_[static_cast<int>(Stage::free_velocity)] = [this](StepContext& c) {
+    for (auto& m : w_.models) m.integrator->free_velocity(c);
+  };
   if (w_.contacts) {
     ContactStages& c = *w_.contacts;
-    stages_[static_cast<int>(Stage::detection_configuration)] = [&c](StepContext& x) { c.detection_configuration(x); };
+    stages_[static_cast<int>(Stage::detection_configuration)] = [this, &c](StepContext& x) {
+      for (auto& m : w_.models) m.integrator->detection_configuration(x);
+      c.detection_configuration(x);
+    };
     stages_[static_cast<int>(Stage::broad_phase)] = [&c](StepContext& x) { c.broad_phase(x); };
     stages_[static_cast<int>(Stage::narrow_phase)] = [&c](StepContext& x) { c.narrow_phase(x); };
     stages_[static_cast<int>(Stage::warm_start)] = [&c](StepContext& x) { c.warm_start(x); };
-    stages_[static_cast<int>(Stage::solve)] = [this, &c](StepContext& x) { c.solve(x, *w_.integrator); };
+    stages_[static_cast<int>(Stage::solve)] = [&c](StepContext& x) { c.solve(x); };
     stages_[static_cast<int>(Stage::store_reactions)] = [&c](StepContext& x) { c.store_reactions(x); };
   }
-  stages_[static_cast<int>(Stage::update_dofs)] = [this](StepContext& c) { w_.integrator->update_dofs(c); };
+  stages_[static_cast<int>(Stage::update_dofs)] = [this](StepContext& c) {
+    for (auto& m : w_.models) m.integrator->update_dofs(c);
+  };
   stages_[static_cast<int>(Stage::end_step)] = [](StepContext& c) { c.state.swap_depths(); };
 }
 
 void Scheduler::apply_drivers(StepContext& ctx) {
-  // A driver imposes v⁺, the velocity at the end of the step, while start ≤ t⁺ ≤ end.
-  Field& f = ctx.state.field(imposed_velocity_field().name);
+  // A driver imposes v⁺, the velocity at the end of the step, while start ≤ t⁺ ≤ end, on
+  // its body's node (drivers act on one-node bodies: the builder checked).
   const double t_end = static_cast<double>(ctx.step + 1) * ctx.h;
-  const int n = f.components();
   // Reset the driven bodies first: several drivers may share a body (different windows).
-  for (const auto& d : w_.drivers) std::fill_n(f.data() + d.body * n, n, std::nan(""));
+  for (const auto& d : w_.drivers) {
+    auto v = ctx.state.node_values(static_cast<std::size_t>(d.body), node_fields::imposed_velocity);
+    std::fill(v.begin(), v.end(), std::nan(""));
+  }
   for (const auto& d : w_.drivers) {
     if (t_end < d.start || t_end > d.end) continue;
-    for (int k = 0; k < n; ++k)
-      if (!std::isnan(d.velocity[k])) f.data()[d.body * n + k] = d.velocity[k];
+    auto v = ctx.state.node_values(static_cast<std::size_t>(d.body), node_fields::imposed_velocity);
+    for (std::size_t k = 0; k < v.size(); ++k)
+      if (!std::isnan(d.velocity[k])) v[k] = d.velocity[k];
   }
 }
 
 void Scheduler::check_finite(long step) const {
-  for (const auto& f : w_.state.fields()) {
-    if (f.spec().output != FieldOutput::frame) continue;
-    const double* p = f.data(Depth::begin);
-    const std::size_t n = f.bodies() * f.components();
-    for (std::size_t i = 0; i < n; ++i)
-      if (!std::isfinite(p[i]))
-        throw RunError("non-finite value in field '" + f.name() + "' of body '" + w_.state.names()[i / f.components()] +
-                       "' after step " + std::to_string(step));
+  for (const auto& set : w_.state.sets()) {
+    const Field* owner = set.name() == sets::bodies ? nullptr : set.find(body_fields::body);
+    for (const auto& f : set.fields()) {
+      if (f.spec().output != FieldOutput::frame) continue;
+      const double* p = f.data(Depth::begin);
+      const std::size_t n = f.rows() * f.components();
+      for (std::size_t i = 0; i < n; ++i) {
+        if (std::isfinite(p[i])) continue;
+        const std::size_t row = i / f.components();
+        const std::size_t body = owner ? static_cast<std::size_t>(owner->data()[row]) : row;
+        std::string where = "of body '" + w_.state.names()[body] + "'";
+        if (set.name() == sets::contacts) where = "of contact " + std::to_string(row);
+        else if (owner) where += " (" + set.name() + " row " + std::to_string(row) + ")";
+        throw RunError("non-finite value in field '" + f.name() + "' " + where + " after step " + std::to_string(step));
+      }
+    }
   }
 }
 
@@ -115,13 +140,8 @@ RunSummary Scheduler::run(const RunOptions& opt) {
     if (!opt.sink) return;
     check_finite(step);
     const auto t0 = StageTimer::clock::now();
-    if (w_.contacts) {
-      const io::ContactFrame f = w_.contacts->frame(w_.dimension, w_.h);
-      opt.sink->write_frame(step, static_cast<double>(step) * w_.h, w_.state,
-                            SolverInfo{w_.contacts->last_iterations(), w_.contacts->last_error()}, &f);
-    } else {
-      opt.sink->write_frame(step, static_cast<double>(step) * w_.h, w_.state, SolverInfo{}, nullptr);
-    }
+    const SolverInfo solver = w_.contacts ? SolverInfo{w_.contacts->last_iterations(), w_.contacts->last_error()} : SolverInfo{};
+    opt.sink->write_frame(step, static_cast<double>(step) * w_.h, w_.state, solver);
     sum.timer.add(Stage::output, StageTimer::clock::now() - t0);
   };
   auto run_hooks = [&](Stage s, When when) {

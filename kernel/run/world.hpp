@@ -14,6 +14,7 @@
 
 #include "../contact/contact_stages.hpp"
 #include "../io/display.hpp"
+#include "../io/output_writer.hpp"
 #include "../plugin/owned.hpp"
 #include "../plugin/registry.hpp"
 
@@ -26,12 +27,21 @@ struct Driver {
   std::vector<double> velocity;  ///< d linear then 1 (2D) / 3 (3D) angular components, world frame
   double start = 0;
   double end = std::numeric_limits<double>::infinity();
+  std::string pointer;  ///< its place in the scene, for messages
 };
 
 struct OutputSettings {
   std::string file;  ///< output HDF5 path ("" = no output)
   long every = 1;    ///< a frame every `every` steps, plus the first and the last
   bool shapes = true;  ///< `display: "shapes"`: contactors drawn as their shapes (else points only)
+};
+
+/// A modelization of the scene paired with its integrator (the seed's ModelHandler): the
+/// scheduler runs both for the bodies that name this model.
+struct Model {
+  std::string name;  ///< the modelization plugin, as bodies name it (`model`)
+  Owned<Modelization> modelization;
+  Owned<Integrator> integrator;
 };
 
 struct World {
@@ -47,14 +57,14 @@ struct World {
 
   std::unique_ptr<Registry> registry;  // before the plugin objects: outlives them
   State state;
-  Owned<Modelization> model;
-  Owned<Integrator> integrator;
+  std::vector<Model> models;  ///< in the order bodies first name them; index = State::models() index
   std::vector<Owned<Force>> forces;
   std::vector<Owned<Hook>> hooks;
   std::vector<Driver> drivers;
   std::unique_ptr<ContactStages> contacts;  ///< null when the scene has no interactions
   std::vector<io::ContactorInfo> contactor_info;  ///< every contactor and its placement, for the output header
   std::shared_ptr<const io::DisplayMeshes> display;  ///< the shapes drawn in the viewer; null: points only
+  std::vector<io::SetTopology> topologies;  ///< the modelizations' element topologies, for the output
 
   explicit World(int dim = 3) : state(dim) {}
 };

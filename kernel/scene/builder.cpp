@@ -5,7 +5,8 @@
 #include <cmath>
 #include <filesystem>
 #include <moreau/error.hpp>
-#include <moreau/imposed_velocity.hpp>
+#include <moreau/contact_fields.hpp>
+#include <moreau/node_fields.hpp>
 #include <optional>
 #include <map>
 #include <set>
@@ -63,9 +64,9 @@ class SceneChecker {
 
     check_materials();
     check_bodies();
+    check_models();
     check_drivers();
     check_interactions();
-    if (time_.contains("integrator")) integrator_ = plugin_use(Kind::integrator, time_["integrator"], "/time/integrator");
     check_plugin_list(Kind::force, "forces", forces_);
     check_plugin_list(Kind::hook, "hooks", hooks_);
     if (!top_["solver"].empty() || has_interactions()) {
@@ -118,12 +119,36 @@ class SceneChecker {
     try {
       w->registry = std::move(registry_);
       Registry& reg = *w->registry;
-      if (!bodies_.empty()) {
-        const auto& m = bodies_.front().model;
-        w->model = reg.create<Modelization>(m.name, Params(json::object(), "/bodies"), ctx, m.pointer);
-        w->state.declare(w->model->fields(dim_));
+      // The modelizations, in the order bodies first name them; each declares its sets and
+      // the fields of its table this scene needs (DESIGN §5: nothing allocated it does not use).
+      const bool with_contacts = !interactions_.empty(), with_forces = !forces_.empty(),
+                 with_imposed = !drivers_.empty() || !hooks_.empty();
+      auto needed = [&](Needed n) {
+        return n == Needed::always || (n == Needed::contacts && with_contacts) || (n == Needed::forces && with_forces) ||
+               (n == Needed::imposed && with_imposed);
+      };
+      std::map<std::string, int> model_index;
+      std::vector<BodyLayout> layouts;
+      for (const auto& b : bodies_) {
+        const std::string& name = b.model.name;
+        if (!model_index.count(name)) {
+          const ModelUse& use = model_uses_.at(name);
+          Model m;
+          m.name = name;
+          m.modelization = reg.create<Modelization>(name, use.params, ctx, use.pointer);
+          const int index = w->state.add_model(ModelInfo{name, m.modelization->node_set(), m.modelization->element_set(),
+                                                         m.modelization->node_dofs(dim_)});
+          for (const auto& f : m.modelization->fields(dim_))
+            if (f.components(dim_) > 0 && needed(f.needed)) w->state.declare(f);
+          model_index[name] = index;
+          w->models.push_back(std::move(m));
+        }
+        const BodySize size = w->models[model_index[name]].modelization->body_size(b.model.params, dim_);
+        layouts.push_back(BodyLayout{b.name, model_index[name], size.nodes, size.elements});
       }
-      w->state.add_bodies(names);
+      if (with_contacts)
+        for (const auto& f : contact_fields::table()) w->state.declare(f);
+      w->state.add_bodies(layouts);
       std::vector<Contactor> contactors;
       std::map<std::string, int> group_index;
       for (const auto& in : interactions_)
@@ -139,25 +164,33 @@ class SceneChecker {
         // (a cluster: parallel-axis theorem in add()).
         std::optional<MassProperties> mass;
         const std::size_t first_detected = contactors.size(), first_info = w->contactor_info.size();
+        const BodyRows rows = w->state.body(i);
         for (const auto& c : b.contactors) {
           json params = c.params.json();
           for (const auto& k : contactor_keys.params()) params.erase(k.name);
+          const long node = c.params.integer("node");
+          if (static_cast<std::size_t>(node) >= rows.nodes)
+            throw InputError(c.pointer + "/node", "body \"" + b.name + "\" has " + std::to_string(rows.nodes) +
+                                                      " node" + (rows.nodes == 1 ? "" : "s") + ": expected a node below " +
+                                                      std::to_string(rows.nodes));
           Owned<Shape> shape = reg.create<Shape>(c.name, Params(params, c.pointer), ctx, c.pointer + "/shape");
           const Placement place_at = placement(c.params);
           if (shape->has_mass())
             mass = add(mass, place_at.identity() ? shape->mass_properties() : place(dim_, shape->mass_properties(), place_at));
           const std::string group = c.params.string("group");
-          w->contactor_info.push_back(io::ContactorInfo{static_cast<int>(i), c.name, group, place_at.offset,
+          w->contactor_info.push_back(io::ContactorInfo{static_cast<int>(i), rows.model, rows.first_node + static_cast<std::size_t>(node),
+                                                        static_cast<int>(node), c.name, group, place_at.offset,
                                                         dim_ == 2 ? std::array<double, 4>{place_at.angle, 0, 0, 0}
                                                                   : place_at.orientation});
           display_shapes.push_back(shape.get());
           if (group_index.count(group))  // contactors of groups no interaction names are never detected
-            contactors.push_back(Contactor{static_cast<int>(i), group_index.at(group), std::move(shape), place_at});
+            contactors.push_back(Contactor{static_cast<int>(i), group_index.at(group), std::move(shape), place_at, rows.model,
+                                           rows.first_node + static_cast<std::size_t>(node)});
           else undetected.push_back(std::move(shape));
         }
         // The modelization may take the cluster's centre of mass as the body origin: the
         // contactors stay where the scene put them, so their offsets are re-expressed.
-        const auto origin = w->model->init_body(w->state, i, b.model.params, mass, density);
+        const auto origin = w->models[rows.model].modelization->init_body(w->state, i, b.model.params, mass, density);
         if (origin[0] != 0 || origin[1] != 0 || origin[2] != 0) {
           for (std::size_t c = first_detected; c < contactors.size(); ++c)
             for (int k = 0; k < 3; ++k) contactors[c].placement.offset[k] -= origin[k];
@@ -166,15 +199,38 @@ class SceneChecker {
         }
       }
       if (w->output.shapes) w->display = build_display(w->state, w->contactor_info, display_shapes);
+      for (const auto& m : w->models) {
+        const Topology t = m.modelization->topology(w->state);
+        if (t.count > 0)
+          w->topologies.push_back(io::SetTopology{m.modelization->element_set(), m.modelization->node_set(), t.cells, t.count});
+      }
       undetected.clear();
       if (!interactions_.empty()) build_contacts(*w, reg, ctx, std::move(contactors), group_index);
-      for (const auto& d : drivers_) w->drivers.push_back(d);
-      if (!w->drivers.empty() || !hooks_.empty()) {
-        Field& f = w->state.declare(imposed_velocity_field());
-        std::fill(f.data(Depth::begin), f.data(Depth::begin) + f.bodies() * f.components(), std::nan(""));
+      for (const auto& d : drivers_) {
+        // A driver imposes a body's generalised velocity: one-node bodies whose modelization
+        // takes imposed velocities (rigid bodies: d linear and 1 or 3 angular components).
+        const BodyRows rows = w->state.body(static_cast<std::size_t>(d.body));
+        const ModelInfo& m = w->state.models()[rows.model];
+        if (rows.nodes != 1 || !w->state.has(m.nodes, node_fields::imposed_velocity) ||
+            static_cast<int>(d.velocity.size()) != m.node_dofs)
+          throw InputError(d.pointer + "/body", "drivers impose the velocity of a rigid body: body \"" +
+                                                    names[static_cast<std::size_t>(d.body)] + "\" is a \"" + m.name +
+                                                    "\" body with " + std::to_string(rows.nodes) + " nodes");
+        w->drivers.push_back(d);
       }
-      w->integrator = reg.create<Integrator>(integrator_.name, integrator_.params, ctx, integrator_.pointer);
-      w->integrator->prepare(w->state);
+      // Each modelization's integrator: the scene's `models.<name>.integrator`, else
+      // `time.integrator`, else the modelization's own choice.
+      for (auto& m : w->models) {
+        const ModelUse& use = model_uses_.at(m.name);
+        std::string name = use.integrator.empty() ? m.modelization->default_integrator() : use.integrator;
+        m.integrator = reg.create<Integrator>(name, Params(json::object(), use.integrator_pointer), ctx, use.integrator_pointer);
+        m.integrator->prepare(w->state, *m.modelization);
+      }
+      if (w->contacts)
+        for (const auto& m : w->models)
+          w->contacts->models.push_back(ContactModel{m.modelization.get(), m.integrator.get(), m.modelization->node_set(),
+                                                     m.modelization->node_dofs(dim_)});
+      ctx.state = &w->state;
       for (const auto& f : forces_) w->forces.push_back(reg.create<Force>(f.name, f.params, ctx, f.pointer));
       for (const auto& h : hooks_) w->hooks.push_back(reg.create<Hook>(h.name, h.params, ctx, h.pointer));
     } catch (const InputError& e) {
@@ -393,7 +449,6 @@ class SceneChecker {
     if (!top_["bodies"].is_array()) return;
     Validation v{dim_, errors_};
     std::set<std::string> seen;
-    std::string first_model;
     const json& bodies = top_["bodies"];
     for (std::size_t i = 0; i < bodies.size(); ++i) {
       const std::string ptr = "/bodies/" + std::to_string(i);
@@ -415,10 +470,7 @@ class SceneChecker {
         body.name = checked["name"].get<std::string>();
         if (!seen.insert(body.name).second) errors_.emplace_back(ptr + "/name", "duplicate body name \"" + body.name + "\"");
       }
-      if (first_model.empty()) first_model = model;
-      else if (model != first_model)
-        errors_.emplace_back(ptr + "/model", "all bodies of a scene must use one modelization for now (\"" +
-                                                 first_model + "\" first, then \"" + model + "\")");
+      if (m && !model_uses_.count(model)) model_uses_[model] = ModelUse{};
       if (checked.contains("material") && checked["material"].is_string()) {
         body.material = checked["material"].get<std::string>();
         if (!materials_.count(body.material)) {
@@ -441,14 +493,61 @@ class SceneChecker {
     if (bodies.empty()) errors_.emplace_back("/bodies", "a scene needs at least one body");
   }
 
-  /// A modelization's body schema comes from an instance (it depends on the dimension).
+  /// A modelization's body schema comes from an instance (it depends on the dimension),
+  /// made once per modelization.
   Schema body_schema(const RegistryEntry& m) {
+    auto it = body_schemas_.find(m.registration.name);
+    if (it != body_schemas_.end()) return it->second;
     BuildContext ctx;
     ctx.dimension = dim_;
     auto obj = m.registration.factory(Params(json::object(), "/bodies"), ctx);
     auto* model = dynamic_cast<Modelization*>(obj.get());
-    if (!model) return {};
-    return model->body_schema(dim_);
+    Schema s = model ? model->body_schema(dim_) : Schema{};
+    body_schemas_[m.registration.name] = s;
+    return s;
+  }
+
+  /// `models` (docs/scene.md): per modelization its parameters (its schema) and, as
+  /// `integrator`, the integrator it is paired with; `time.integrator` is the default of
+  /// every model that names none. A model no body uses is an error (nothing ignored).
+  void check_models() {
+    const std::string time_integrator = time_.contains("integrator") && time_["integrator"].is_string()
+                                            ? time_["integrator"].get<std::string>() : "";
+    if (!time_integrator.empty()) lookup(Kind::integrator, time_integrator, "/time/integrator");
+    for (auto& [name, use] : model_uses_) {
+      use.integrator = time_integrator;
+      use.integrator_pointer = time_integrator.empty() ? "/bodies" : "/time/integrator";
+      use.pointer = "/bodies";
+      use.params = Params(json::object(), "/models/" + pointer_token(name));
+    }
+    if (!top_.contains("models") || !top_["models"].is_object()) return;
+    Validation v{dim_, errors_};
+    for (auto it = top_["models"].begin(); it != top_["models"].end(); ++it) {
+      const std::string ptr = "/models/" + pointer_token(it.key());
+      if (!model_uses_.count(it.key())) {
+        std::vector<std::string> used;
+        for (const auto& [n, u] : model_uses_) used.push_back(n);
+        std::string msg = "no body uses the modelization \"" + it.key() + "\"";
+        if (auto n = nearest_key(it.key(), used); !n.empty()) msg += "; did you mean \"" + n + "\"?";
+        errors_.emplace_back(ptr, msg);
+        continue;
+      }
+      const RegistryEntry* e = lookup(Kind::modelization, it.key(), ptr);
+      if (!e) continue;
+      Schema all;
+      all.string("integrator", "the integrator paired with this modelization").optional();
+      all.merge(e->registration.schema);
+      json checked = validate_object(it.value(), all, ptr, v);
+      ModelUse& use = model_uses_[it.key()];
+      if (checked.contains("integrator") && checked["integrator"].is_string()) {
+        use.integrator = checked["integrator"].get<std::string>();
+        use.integrator_pointer = ptr + "/integrator";
+        lookup(Kind::integrator, use.integrator, use.integrator_pointer);
+        checked.erase("integrator");
+      }
+      use.pointer = ptr;
+      use.params = Params(checked, ptr);
+    }
   }
 
   PluginUse contactor(const json& c, const std::string& ptr) {
@@ -490,6 +589,7 @@ class SceneChecker {
       json d = validate_object(ds[i], scene_schema::driver(), ptr, v);
       if (errors_.size() != before) continue;
       Driver drv;
+      drv.pointer = ptr;
       const std::string name = d["body"].get<std::string>();
       drv.body = body_index(name);
       if (drv.body < 0) { errors_.emplace_back(ptr + "/body", "no body named \"" + name + "\""); continue; }
@@ -609,7 +709,16 @@ class SceneChecker {
   std::map<std::string, PluginUse> laws_;
   std::vector<BodyUse> bodies_;
   std::vector<Driver> drivers_;
-  PluginUse integrator_, solver_, broadphase_;
+  PluginUse solver_, broadphase_;
+  /// Per modelization the bodies name: its parameters and its integrator (`models`).
+  struct ModelUse {
+    Params params;
+    std::string pointer;
+    std::string integrator;  ///< "" : the modelization's default
+    std::string integrator_pointer;
+  };
+  std::map<std::string, ModelUse> model_uses_;
+  std::map<std::string, Schema> body_schemas_;
   struct InteractionUse {
     std::string a, b, law, pointer;
   };

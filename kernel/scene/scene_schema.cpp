@@ -12,6 +12,7 @@ Schema top() {
   s.object("materials", "named materials: {name: {density}}").fallback(nlohmann::json::object());
   s.object("laws", "named contact laws: {name: {type, ...}}").fallback(nlohmann::json::object());
   s.array("bodies", "the bodies");
+  s.object("models", "per modelization the bodies name: {name: {integrator, ...its parameters}}").optional();
   s.array("generators", "body generators (none are available yet: must be empty)").fallback(nlohmann::json::array());
   s.array("drivers", "imposed velocities: [{body, velocity, angular_velocity, start, end}]").fallback(nlohmann::json::array());
   s.array("forces", "external-force plugins: [{type, ...}]").fallback(nlohmann::json::array());
@@ -39,7 +40,7 @@ Schema time() {
   s.number("step", "time step h").units("s").gt(0);
   s.number("duration", "simulated time; the run makes round(duration/step) steps").units("s").min(0);
   s.number("theta", "theta of the theta-scheme").min(0.5).max(1).fallback(0.5);
-  s.string("integrator", "integrator plugin").fallback("theta");
+  s.string("integrator", "integrator plugin of every modelization that names none in `models` (default: each modelization's own, theta for rigid)").optional();
   return s;
 }
 
@@ -73,6 +74,7 @@ Schema contactor_kernel_keys(int dim) {
   Schema s;
   s.string("shape", "shape plugin");
   s.string("group", "contactor group, paired in `interactions`").fallback("default");
+  s.integer("node", "the body's node that supports the contactor (bodies of several nodes; rigid bodies have one)").min(0).fallback(0);
   // The placement of the shape in the body frame (clusters: several contactors on a body).
   s.vector("offset", "position of the shape's origin in the body frame", length::dimension).units("m")
       .fallback(nlohmann::json(std::vector<double>(static_cast<std::size_t>(dim), 0.0)));

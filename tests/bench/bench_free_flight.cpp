@@ -25,14 +25,14 @@ constexpr double kBytesIsotropic = kBytesAnisotropic - 8.0 * 4;  // free_velocit
 
 std::unique_ptr<Sim> make(bool isotropic) {
   auto s = std::make_unique<Sim>(3, 1e-4, 0.5, std::vector<double>{0, 0, -9.81});
-  std::vector<std::string> names(kBodies);
-  for (std::size_t i = 0; i < kBodies; ++i) names[i] = "b" + std::to_string(i);
-  s->state.add_bodies(names);
+  std::vector<moreau::BodyLayout> bodies(kBodies);
+  for (std::size_t i = 0; i < kBodies; ++i) bodies[i] = moreau::BodyLayout{"b" + std::to_string(i), 0, 1, 0};
+  s->state.add_bodies(bodies);
   std::mt19937_64 rng(42);
   std::uniform_real_distribution<double> u(-1, 1);
   auto fill = [&](const char* f, auto gen) {
     for (moreau::Depth d : {moreau::Depth::begin, moreau::Depth::end}) {
-      auto& fld = s->state.field(f);
+      auto& fld = s->field(f);
       for (std::size_t i = 0; i < kBodies * fld.components(); ++i) fld.data(d)[i] = gen(i % fld.components());
     }
   };

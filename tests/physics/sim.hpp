@@ -40,8 +40,21 @@ class Sim {
     };
     model = create<moreau::Modelization>("rigid", nlohmann::json::object(), build);
     integrator = create<moreau::Integrator>("theta", nlohmann::json::object(), build);
-    state.declare(model->fields(dim));
+    state.add_model({"rigid", model->node_set(), "", model->node_dofs(dim)});
+    // Every field but those of contacts and imposed velocities (declare_field adds them).
+    for (const auto& f : model->fields(dim))
+      if (f.components(dim) > 0 && (f.needed == moreau::Needed::always || f.needed == moreau::Needed::forces))
+        state.declare(f);
   }
+
+  /// Declares one more field of the rigid table (e.g. imposed_velocity).
+  moreau::Field& declare_field(const char* name) {
+    for (const auto& f : model->fields(state.dimension()))
+      if (f.name == name) return state.declare(f);
+    throw std::logic_error(std::string("no rigid field ") + name);
+  }
+  moreau::Field& field(const char* name) { return state.field(moreau::rigid::nodes, name); }
+  const moreau::Field& field(const char* name) const { return state.field(moreau::rigid::nodes, name); }
 
   /// Adds a body from its scene JSON (validated against the rigid body schema).
   std::size_t add_body(const std::string& name, const nlohmann::json& body) {
@@ -49,7 +62,7 @@ class Sim {
     moreau::kernel::Validation v{state.dimension(), errors};
     nlohmann::json checked = moreau::kernel::validate_object(body, model->body_schema(state.dimension()), "/bodies/0", v);
     if (!errors.empty()) throw errors.front();
-    const std::size_t b = state.add_bodies({name});
+    const std::size_t b = state.add_bodies({moreau::BodyLayout{name, 0, 1, 0}});
     model->init_body(state, b, moreau::Params(checked, "/bodies/0"), std::nullopt, std::nullopt);
     return b;
   }
@@ -59,14 +72,14 @@ class Sim {
     ctx.external_forces = true;
   }
 
-  void prepare() { integrator->prepare(state); }
+  void prepare() { integrator->prepare(state, *model); }
 
   void step() {
     ctx.time = static_cast<double>(ctx.step) * ctx.h;
     if (ctx.external_forces) {
       for (const char* f : {moreau::rigid::force, moreau::rigid::torque}) {
-        auto& fld = state.field(f);
-        std::fill(fld.data(), fld.data() + fld.bodies() * fld.components(), 0.0);
+        auto& fld = field(f);
+        std::fill(fld.data(), fld.data() + fld.rows() * fld.components(), 0.0);
       }
       for (auto& f : forces) f->apply(ctx);
     }
@@ -81,7 +94,7 @@ class Sim {
   double time() const { return static_cast<double>(ctx.step) * ctx.h; }
   /// Current (end of last step) value of a field component.
   double at(const char* field, std::size_t body, int k) const {
-    return state.field(field).row(body, moreau::Depth::begin)[k];
+    return state.field(moreau::rigid::nodes, field).row(body, moreau::Depth::begin)[k];
   }
 
   moreau::State state;

@@ -6,7 +6,6 @@
 #include <gtest/gtest.h>
 
 #include <cstdio>
-#include <moreau/imposed_velocity.hpp>
 
 #include "sim.hpp"
 
@@ -71,8 +70,7 @@ TEST(FreeFlight, ImposedComponentsHonouredOthersFree) {
   Sim s(2, 0.01, 0.5, {0, -9.81});
   // Initial velocities match the imposed ones (a jump at t = 0 would lag the θ-scheme by h/2).
   s.add_body("cart", {{"position", {0, 0}}, {"velocity", {0.5, 0}}, {"angular_velocity", 2.0}, {"mass", 1}, {"inertia", 1}});
-  s.state.declare(moreau::imposed_velocity_field());
-  auto imp = s.state.field(moreau::imposed_velocity_field().name).row(0);
+  auto imp = s.declare_field(R::imposed_velocity).row(0);
   imp[0] = 0.5;          // vx imposed
   imp[1] = std::nan("");  // vy free: falls
   imp[2] = 2.0;          // ω imposed

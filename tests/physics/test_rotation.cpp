@@ -22,8 +22,8 @@ struct Drift {
 };
 
 void momentum_energy(const Sim& s, const double I[3], double L[3], double& E) {
-  const double* q = s.state.field(R::orientation).row(0, moreau::Depth::begin).data();
-  const double* w = s.state.field(R::angular_velocity).row(0, moreau::Depth::begin).data();
+  const double* q = s.field(R::orientation).row(0, moreau::Depth::begin).data();
+  const double* w = s.field(R::angular_velocity).row(0, moreau::Depth::begin).data();
   double Rm[9], W[3], IW[3];
   moreau::theta::quat_to_matrix(q, Rm);
   moreau::theta::mul_transpose(Rm, w, W);
@@ -51,7 +51,7 @@ Drift torque_free(double h, double T) {
     momentum_energy(s, I, L, E);
     d.momentum = std::max(d.momentum, std::sqrt(std::pow(L[0] - L0[0], 2) + std::pow(L[1] - L0[1], 2) + std::pow(L[2] - L0[2], 2)) / n0);
     d.energy = std::max(d.energy, std::fabs(E - E0) / E0);
-    const double* q = s.state.field(R::orientation).row(0, moreau::Depth::begin).data();
+    const double* q = s.field(R::orientation).row(0, moreau::Depth::begin).data();
     d.quaternion = std::max(d.quaternion, std::fabs(std::sqrt(q[0] * q[0] + q[1] * q[1] + q[2] * q[2] + q[3] * q[3]) - 1));
   }
   return d;

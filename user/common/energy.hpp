@@ -1,5 +1,6 @@
 #pragma once
-// Energies of rigid bodies from the State (shared by the example hooks).
+// Energies of the rigid bodies from the State (shared by the example hooks): the rows of
+// `rigid.nodes` (other modelizations' bodies are not counted).
 #include <cmath>
 #include <moreau/rigid_fields.hpp>
 #include <moreau/state.hpp>
@@ -19,14 +20,15 @@ struct Energies {
 inline Energies energies(const State& st, const std::vector<double>& g, Depth depth = Depth::begin) {
   namespace R = moreau::rigid;
   Energies e;
+  if (!st.has_set(R::nodes)) return e;
   const int d = st.dimension();
-  const double* m = st.field(R::mass).data();
-  const double* fixed = st.field(R::fixed).data();
-  const double* x = st.field(R::position).data(depth);
-  const double* v = st.field(R::velocity).data(depth);
-  const double* w = st.field(R::angular_velocity).data(depth);
-  const double* I = st.field(R::inertia).data();
-  for (std::size_t b = 0; b < st.bodies(); ++b) {
+  const double* m = st.field(R::nodes, R::mass).data();
+  const double* fixed = st.field(R::nodes, R::fixed).data();
+  const double* x = st.field(R::nodes, R::position).data(depth);
+  const double* v = st.field(R::nodes, R::velocity).data(depth);
+  const double* w = st.field(R::nodes, R::angular_velocity).data(depth);
+  const double* I = st.field(R::nodes, R::inertia).data();
+  for (std::size_t b = 0; b < st.set(R::nodes).rows(); ++b) {
     if (fixed[b] != 0) continue;
     double v2 = 0, gx = 0;
     for (int k = 0; k < d; ++k) {
@@ -39,7 +41,7 @@ inline Energies energies(const State& st, const std::vector<double>& g, Depth de
       e.rotational += 0.5 * I[b] * w[b] * w[b];
     } else {
       // Ω = Rᵀ ω with R from the unit quaternion (w x y z).
-      const double* q = st.field(R::orientation).data(depth) + 4 * b;
+      const double* q = st.field(R::nodes, R::orientation).data(depth) + 4 * b;
       const double* om = w + 3 * b;
       const double qw = q[0], qx = -q[1], qy = -q[2], qz = -q[3];  // conjugate: world → body
       const double t[3] = {2 * (qy * om[2] - qz * om[1]), 2 * (qz * om[0] - qx * om[2]), 2 * (qx * om[1] - qy * om[0])};

@@ -7,7 +7,7 @@
 #include <cmath>
 #include <moreau/error.hpp>
 #include <moreau/hook.hpp>
-#include <moreau/imposed_velocity.hpp>
+#include <moreau/node_fields.hpp>
 #include <numbers>
 
 namespace {
@@ -40,7 +40,8 @@ class Shake : public Hook {
   void run(HookContext& ctx) override {
     State& st = ctx.steer();
     const double t_end = static_cast<double>(ctx.step() + 1) * ctx.time_step();  // v⁺ is imposed
-    st.field(imposed_velocity_field().name).row(static_cast<std::size_t>(body_))[component_] =
+    // The body's node (a rigid body has one): its row of the imposed velocity.
+    st.node_values(static_cast<std::size_t>(body_), node_fields::imposed_velocity)[component_] =
         amplitude_ * omega_ * std::cos(omega_ * t_end);
   }
 

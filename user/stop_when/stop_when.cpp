@@ -56,8 +56,8 @@ class StopWhen : public Hook {
  private:
   double measure(const HookContext& ctx) const {
     if (quantity_ == "kinetic_energy") return user::energies(ctx.state(), ctx.gravity()).kinetic();
-    const auto& f = ctx.state().field(quantity_ == "position" ? rigid::position : rigid::velocity);
-    return f.row(static_cast<std::size_t>(body_), Depth::begin)[component_];
+    return ctx.state().node_values(static_cast<std::size_t>(body_), quantity_ == "position" ? rigid::position : rigid::velocity,
+                                   Depth::begin)[component_];
   }
   std::string describe() const {
     if (quantity_ == "kinetic_energy") return "kinetic energy";

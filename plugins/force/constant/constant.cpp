@@ -1,4 +1,6 @@
-// `constant`: a constant force and torque (world frame) on one body, for the whole run.
+// `constant`: a constant force and torque (world frame) on one body, for the whole run. The
+// body is addressed by name; its data is its node's row in its modelization's node set
+// (State::node_values), so it works whatever other modelizations share the scene.
 #include <moreau/force.hpp>
 #include <moreau/rigid_fields.hpp>
 
@@ -18,21 +20,31 @@ class Constant : public Force {
   static constexpr const char* doc = "constant force and torque on a body";
 
   Constant(const Params& p, const BuildContext& ctx)
-      : body_(ctx.body_index(p.string("body"), p.pointer("body"))),
+      : body_(static_cast<std::size_t>(ctx.body_index(p.string("body"), p.pointer("body")))),
         force_(p.has("force") ? p.vector("force") : std::vector<double>(ctx.dimension, 0.0)),
         torque_(p.has("torque") ? p.vector("torque") : std::vector<double>(ctx.dimension == 2 ? 1 : 3, 0.0)) {
     if (!p.has("force") && !p.has("torque")) throw p.error("", "give a \"force\", a \"torque\", or both");
+    // A force on the body's one node: bodies of a modelization with loads on one node (rigid).
+    if (ctx.state) {
+      const auto b = static_cast<std::size_t>(body_);
+      const ModelInfo& m = ctx.state->model_of(b);
+      if (ctx.state->body(b).nodes != 1 || !ctx.state->has_node_field(b, rigid::force) ||
+          (p.has("torque") && !ctx.state->has_node_field(b, rigid::torque)))
+        throw p.error("body", "a constant force acts on a body of one node with forces and torques (rigid): \"" +
+                                  p.string("body") + "\" is a \"" + m.name + "\" body");
+    }
   }
 
   void apply(StepContext& c) override {
-    auto f = c.state.field(rigid::force).row(body_);
+    auto f = c.state.node_values(body_, rigid::force);
     for (std::size_t k = 0; k < f.size(); ++k) f[k] += force_[k];
-    auto t = c.state.field(rigid::torque).row(body_);
+    if (!c.state.has_node_field(body_, rigid::torque)) return;
+    auto t = c.state.node_values(body_, rigid::torque);
     for (std::size_t k = 0; k < t.size(); ++k) t[k] += torque_[k];
   }
 
  private:
-  int body_;
+  std::size_t body_;
   std::vector<double> force_, torque_;
 };
 

@@ -9,9 +9,9 @@
 // which keeps the θ = 0.5 scheme second order), and q⁺ = q⁻ ⊗ exp(h Ω_θ / 2) with
 // Ω_θ = (1−θ)Ω⁻ + θΩ⁺ (computed in world axes as exp(φ/2) ⊗ q⁻), so quaternions stay unit. Bodies with isotropic inertia skip the
 // gyroscopic solve (Ω×IΩ = 0). Contact impulses act with the world inverse inertia at
-// the start of the step, R⁻ I⁻¹ R⁻ᵀ, which is what contact_inverse_mass() reports.
+// the start of the step, R⁻ I⁻¹ R⁻ᵀ, which is what compact_inverse() reports. Every field
+// is a node field of `rigid.nodes` (a rigid body is one node).
 #include <cmath>
-#include <moreau/imposed_velocity.hpp>
 #include <moreau/integrator.hpp>
 #include <moreau/rigid_fields.hpp>
 
@@ -26,7 +26,8 @@ using namespace moreau::theta;
 /// Raw pointers to the fields of one step (the hot loops index them directly).
 struct Fields {
   double *x0, *x1, *v0, *v1, *w0, *w1, *q0, *q1;  // begin / end depths (q: angle in 2D)
-  double *vf, *wf, *im, *ii, *I, *F, *T, *P, *L, *imp;
+  double *vf, *wf, *im, *ii, *I, *F, *T, *P, *imp;  // P: reaction, k per node (linear, then angular)
+  std::size_t n;  // nodes (rigid bodies)
 };
 
 class Theta : public Integrator {
@@ -35,9 +36,11 @@ class Theta : public Integrator {
   static constexpr const char* doc = "theta-method (Moreau-Jean) for rigid bodies; theta from time.theta";
   Theta(const Params&, const BuildContext&) {}
 
-  void prepare(State& st) override {
+  void prepare(State& st, const Modelization& model) override {
     for (const char* f : {R::position, R::velocity, R::angular_velocity, R::inverse_mass, R::inverse_inertia})
-      if (!st.has(f)) throw InputError("/time/integrator", std::string("the theta integrator needs the rigid field '") + f + "'");
+      if (!st.has(R::nodes, f))
+        throw InputError("/time/integrator", "the theta integrator works on rigid bodies: modelization \"" +
+                                                 model.node_set() + "\" has no rigid field '" + f + "'");
   }
 
   void free_velocity(StepContext& c) override {
@@ -52,23 +55,66 @@ class Theta : public Integrator {
     else update_3d(c, f);
   }
 
-  void contact_inverse_mass(const State& st, std::size_t b, double* M, double* center) const override {
+  void detection_configuration(StepContext& c) override {
+    // Contacts are detected on the predicted configuration q_θ = q⁻ + (1−θ) h v⁻ (LMGC90's
+    // choice): the θ-scheme moves bodies from there by θ h v⁺, so a constraint on v⁺ with
+    // the gap at q_θ keeps contacts from closing further during the step.
+    State& st = c.state;
+    const int d = st.dimension();
+    const std::size_t nb = st.set(R::nodes).rows();
+    const double a = (1 - c.theta) * c.h;
+    const double* x = st.field(R::nodes, R::position).data(Depth::begin);
+    const double* v = st.field(R::nodes, R::velocity).data(Depth::begin);
+    const double* w = st.field(R::nodes, R::angular_velocity).data(Depth::begin);
+    const double* q = st.field(R::nodes, d == 2 ? R::angle : R::orientation).data(Depth::begin);
+    double* px = st.field(R::nodes, R::detection_position).data();
+    double* pq = st.field(R::nodes, R::detection_rotation).data();
+    double* travel = st.field(R::nodes, R::travel).data();
+    double g_norm = 0;
+    for (double gk : c.gravity) g_norm += gk * gk;
+    g_norm = std::sqrt(g_norm);
+    const int nr = d == 2 ? 1 : 3;
+    for (std::size_t b = 0; b < nb; ++b) {
+      // How far the body may travel and turn in the step (from its start velocity, with
+      // margin): contacts are looked for that much further, so a fast body does not tunnel.
+      double v2 = 0, w2 = 0;
+      for (int k = 0; k < d; ++k) v2 += v[d * b + k] * v[d * b + k];
+      for (int k = 0; k < nr; ++k) w2 += w[nr * b + k] * w[nr * b + k];
+      travel[2 * b] = 2 * c.h * std::sqrt(v2) + c.h * c.h * g_norm;
+      travel[2 * b + 1] = 2 * c.h * std::sqrt(w2);
+      for (int k = 0; k < d; ++k) px[d * b + k] = x[d * b + k] + a * v[d * b + k];
+      if (d == 2) {
+        pq[b] = q[b] + a * w[b];
+      } else {
+        // q_θ = exp(a ω / 2) ⊗ q⁻ (ω in the world frame); first order is enough for a
+        // detection configuration, renormalised.
+        const double* qb = q + 4 * b;
+        const double* wb = w + 3 * b;
+        const double p[4] = {1, 0.5 * a * wb[0], 0.5 * a * wb[1], 0.5 * a * wb[2]};
+        double r[4] = {p[0] * qb[0] - p[1] * qb[1] - p[2] * qb[2] - p[3] * qb[3],
+                       p[0] * qb[1] + p[1] * qb[0] + p[2] * qb[3] - p[3] * qb[2],
+                       p[0] * qb[2] - p[1] * qb[3] + p[2] * qb[0] + p[3] * qb[1],
+                       p[0] * qb[3] + p[1] * qb[2] - p[2] * qb[1] + p[3] * qb[0]};
+        const double n = 1 / std::sqrt(r[0] * r[0] + r[1] * r[1] + r[2] * r[2] + r[3] * r[3]);
+        for (int k = 0; k < 4; ++k) pq[4 * b + k] = r[k] * n;
+      }
+    }
+  }
+
+  bool compact_inverse(const State& st, std::size_t body, double* M) const override {
     const int d = st.dimension();
     const int k = d == 2 ? 3 : 6;
+    const std::size_t b = st.body(body).first_node;
     for (int i = 0; i < k * k; ++i) M[i] = 0;
-    const double* x = st.field(R::position).row(b, Depth::begin).data();
-    center[0] = x[0];
-    center[1] = x[1];
-    center[2] = d == 3 ? x[2] : 0.0;
-    const double im = st.field(R::inverse_mass).row(b)[0];
-    if (im == 0) return;  // fixed
-    const double* ii = st.field(R::inverse_inertia).row(b).data();
+    const double im = st.field(R::nodes, R::inverse_mass).row(b)[0];
+    if (im == 0) return true;  // fixed
+    const double* ii = st.field(R::nodes, R::inverse_inertia).row(b).data();
     for (int i = 0; i < d; ++i) M[i * k + i] = im;
     if (d == 2) {
       M[8] = ii[0];
     } else {
       double Rm[9], A[9], Iw[9];
-      quat_to_matrix(st.field(R::orientation).row(b, Depth::begin).data(), Rm);
+      quat_to_matrix(st.field(R::nodes, R::orientation).row(b, Depth::begin).data(), Rm);
       // Iw = R I⁻¹ Rᵀ
       const double S[9] = {ii[0], ii[3], ii[4], ii[3], ii[1], ii[5], ii[4], ii[5], ii[2]};
       for (int i = 0; i < 3; ++i)
@@ -79,17 +125,31 @@ class Theta : public Integrator {
         for (int j = 0; j < 3; ++j) M[(3 + i) * k + 3 + j] = Iw[i * 3 + j];
     }
     // An imposed component has infinite mass: no impulse changes it.
-    if (st.has(imposed_velocity_field().name)) {
-      const double* imp = st.field(imposed_velocity_field().name).row(b).data();
+    if (const Field* f = st.set(R::nodes).find(R::imposed_velocity)) {
+      const double* imp = f->row(b).data();
       for (int i = 0; i < k; ++i)
         if (!std::isnan(imp[i]))
           for (int j = 0; j < k; ++j) M[i * k + j] = M[j * k + i] = 0;
     }
+    return true;
+  }
+
+  void apply_inverse(const State& st, std::size_t body, int columns, const double* in, double* out) const override {
+    const int k = st.dimension() == 2 ? 3 : 6;
+    double M[36];
+    compact_inverse(st, body, M);
+    for (int c = 0; c < columns; ++c)
+      for (int i = 0; i < k; ++i) {
+        double s = 0;
+        for (int j = 0; j < k; ++j) s += M[i * k + j] * in[c * k + j];
+        out[c * k + i] = s;
+      }
   }
 
  private:
   static double* ptr(State& st, const char* name, Depth d = Depth::end) {
-    return st.has(name) ? st.field(name).data(d) : nullptr;
+    Field* f = st.set(R::nodes).find(name);
+    return f ? f->data(d) : nullptr;
   }
 
   static Fields fields(State& st, bool forces, bool impulses) {
@@ -112,14 +172,14 @@ class Theta : public Integrator {
       f.F = ptr(st, R::force);
       f.T = ptr(st, R::torque);
     }
-    f.P = impulses ? ptr(st, R::impulse) : nullptr;
-    f.L = f.P ? ptr(st, R::angular_impulse) : nullptr;
-    f.imp = ptr(st, imposed_velocity_field().name.c_str());
+    f.P = impulses ? ptr(st, R::reaction) : nullptr;
+    f.imp = ptr(st, R::imposed_velocity);
+    f.n = st.set(R::nodes).rows();
     return f;
   }
 
   static void free_2d(const StepContext& c, const Fields& f) {
-    const std::size_t n = c.state.bodies();
+    const std::size_t n = f.n;
     const double h = c.h, gx = c.gravity[0], gy = c.gravity[1];
     for (std::size_t i = 0; i < n; ++i) {
       const double im = f.im[i];
@@ -141,14 +201,14 @@ class Theta : public Integrator {
   }
 
   static void update_2d(const StepContext& c, const Fields& f) {
-    const std::size_t n = c.state.bodies();
+    const std::size_t n = f.n;
     const double h = c.h, a = h * (1 - c.theta), b = h * c.theta;
     for (std::size_t i = 0; i < n; ++i) {
       double vx = f.vf[2 * i], vy = f.vf[2 * i + 1], w = f.wf[i];
       if (f.P && f.im[i] != 0) {
-        vx += f.im[i] * f.P[2 * i];
-        vy += f.im[i] * f.P[2 * i + 1];
-        w += f.ii[i] * f.L[i];
+        vx += f.im[i] * f.P[3 * i];
+        vy += f.im[i] * f.P[3 * i + 1];
+        w += f.ii[i] * f.P[3 * i + 2];
       }
       if (f.imp) {
         double v[2] = {vx, vy};
@@ -166,7 +226,7 @@ class Theta : public Integrator {
   }
 
   static void free_3d(const StepContext& c, const Fields& f) {
-    const std::size_t n = c.state.bodies();
+    const std::size_t n = f.n;
     const double h = c.h, ht = c.h * c.theta;
     const double g[3] = {c.gravity[0], c.gravity[1], c.gravity[2]};
     for (std::size_t i = 0; i < n; ++i) {
@@ -217,7 +277,7 @@ class Theta : public Integrator {
   }
 
   static void update_3d(const StepContext& c, const Fields& f) {
-    const std::size_t n = c.state.bodies();
+    const std::size_t n = f.n;
     const double h = c.h, a = h * (1 - c.theta), b = h * c.theta, th = c.theta;
     for (std::size_t i = 0; i < n; ++i) {
       double v[3] = {f.vf[3 * i], f.vf[3 * i + 1], f.vf[3 * i + 2]};
@@ -230,8 +290,8 @@ class Theta : public Integrator {
         double Rm[9], Lb[3], dW[3], dw[3];
         quat_to_matrix(q0, Rm);
         const double* ii = f.ii + 6 * i;
-        for (int k = 0; k < 3; ++k) v[k] += f.im[i] * f.P[3 * i + k];
-        mul_transpose(Rm, f.L + 3 * i, Lb);
+        for (int k = 0; k < 3; ++k) v[k] += f.im[i] * f.P[6 * i + k];
+        mul_transpose(Rm, f.P + 6 * i + 3, Lb);
         sym_mul(ii, Lb, dW);
         mul(Rm, dW, dw);
         for (int k = 0; k < 3; ++k) w[k] += dw[k];

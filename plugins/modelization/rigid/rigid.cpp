@@ -1,7 +1,9 @@
-// `rigid`: rigid bodies in 2D and 3D. Declares the rigid field table and fills each
-// body's rows from the scene: pose, velocities, mass and inertia (explicit, or from the
-// contactors' geometry and the material density). Gravity and the gyroscopic term are
-// the integrator's, so the bulk stage has nothing to do.
+// `rigid`: rigid bodies in 2D and 3D. A body is one node of the set `rigid.nodes`, with
+// k = 3 (2D: vx vy ω) or 6 (3D: v, ω) unknowns. Declares the rigid field table and fills
+// each body's row from the scene: pose, velocities, mass and inertia (explicit, or from
+// the contactors' geometry and the material density). Gravity and the gyroscopic term are
+// the integrator's, so the bulk stage has nothing to do. For the contact side: the
+// velocity of a material point, v + ω × r, in the contact frame (the rows of H).
 //
 // The state's position is the centre of mass. When the inertia comes from the contactors
 // (a cluster placed freely in the scene's body frame), the body origin moves to their
@@ -25,7 +27,10 @@ class Rigid : public Modelization {
   static constexpr const char* doc = "rigid bodies (Newton-Euler), 2D and 3D";
   Rigid(const Params&, const BuildContext&) {}
 
+  std::string node_set() const override { return R::nodes; }
+  int node_dofs(int dim) const override { return dim == 2 ? 3 : 6; }
   std::vector<FieldSpec> fields(int) const override { return R::fields(); }
+  std::string default_integrator() const override { return "theta"; }
 
   Schema body_schema(int dim) const override {
     Schema s;
@@ -48,25 +53,26 @@ class Rigid : public Modelization {
     return s;
   }
 
-  std::array<double, 3> init_body(State& st, std::size_t b, const Params& p,
+  std::array<double, 3> init_body(State& st, std::size_t body, const Params& p,
                                   const std::optional<MassProperties>& shapes, std::optional<double> density) override {
     const int d = st.dimension();
+    const std::size_t b = st.body(body).first_node;  // its row in rigid.nodes
     const bool fixed = p.boolean("fixed");
-    st.field(R::fixed).row(b)[0] = fixed ? 1.0 : 0.0;
-    set_both(st.field(R::position), b, p.vector("position"));
+    st.field(R::nodes, R::fixed).row(b)[0] = fixed ? 1.0 : 0.0;
+    set_both(st.field(R::nodes, R::position), b, p.vector("position"));
     const std::vector<double> v = p.has("velocity") ? p.vector("velocity") : std::vector<double>(d, 0.0);
-    set_both(st.field(R::velocity), b, fixed ? std::vector<double>(d, 0.0) : v);
+    set_both(st.field(R::nodes, R::velocity), b, fixed ? std::vector<double>(d, 0.0) : v);
     if (d == 2) {
-      set_both(st.field(R::angle), b, {p.number("angle")});
-      set_both(st.field(R::angular_velocity), b, {fixed ? 0.0 : p.number("angular_velocity")});
+      set_both(st.field(R::nodes, R::angle), b, {p.number("angle")});
+      set_both(st.field(R::nodes, R::angular_velocity), b, {fixed ? 0.0 : p.number("angular_velocity")});
     } else {
       std::vector<double> q = p.vector("orientation");
       const double n = std::sqrt(q[0] * q[0] + q[1] * q[1] + q[2] * q[2] + q[3] * q[3]);
       if (std::fabs(n - 1) > 1e-6)
         throw p.error("orientation", "expected a unit quaternion [w, x, y, z], its norm is " + std::to_string(n));
       for (double& x : q) x /= n;
-      set_both(st.field(R::orientation), b, q);
-      set_both(st.field(R::angular_velocity), b, fixed ? std::vector<double>(3, 0.0) : p.vector("angular_velocity"));
+      set_both(st.field(R::nodes, R::orientation), b, q);
+      set_both(st.field(R::nodes, R::angular_velocity), b, fixed ? std::vector<double>(3, 0.0) : p.vector("angular_velocity"));
     }
 
     // The origin moves to the contactors' centre of mass when the inertia comes from them.
@@ -89,8 +95,8 @@ class Rigid : public Modelization {
     if (!fixed && !(mass > 0))
       throw p.error("", "a body that is not fixed needs a mass: give \"mass\" and \"inertia\", or contactors and a "
                         "\"material\" with a density");
-    st.field(R::mass).row(b)[0] = mass;
-    st.field(R::inverse_mass).row(b)[0] = fixed ? 0.0 : 1.0 / mass;
+    st.field(R::nodes, R::mass).row(b)[0] = mass;
+    st.field(R::nodes, R::inverse_mass).row(b)[0] = fixed ? 0.0 : 1.0 / mass;
 
     // Inertia: explicit, or the contactors' unit-density inertia scaled to the mass.
     std::vector<double> I(d == 2 ? 1 : 6, 0.0);
@@ -111,9 +117,9 @@ class Rigid : public Modelization {
     } else if (!fixed) {
       throw p.error("", "a body with an explicit mass and no contactors needs \"inertia\"");
     }
-    st.field(R::inertia).row(b).data()[0] = I[0];
-    for (std::size_t k = 0; k < I.size(); ++k) st.field(R::inertia).row(b)[k] = I[k];
-    auto inv = st.field(R::inverse_inertia).row(b);
+    st.field(R::nodes, R::inertia).row(b).data()[0] = I[0];
+    for (std::size_t k = 0; k < I.size(); ++k) st.field(R::nodes, R::inertia).row(b)[k] = I[k];
+    auto inv = st.field(R::nodes, R::inverse_inertia).row(b);
     if (fixed) {
       for (double& x : inv) x = 0;
     } else if (d == 2) {
@@ -128,20 +134,57 @@ class Rigid : public Modelization {
   void bulk(StepContext&) override {}
   bool has_bulk() const override { return false; }
 
+  void generalised_velocity(const State& st, Velocity which, std::size_t n, double* out) const override {
+    const int d = st.dimension(), nr = d == 2 ? 1 : 3;
+    const bool begin = which == Velocity::begin;
+    const double* v = st.field(R::nodes, begin ? R::velocity : R::free_velocity).data(Depth::begin);
+    const double* w = st.field(R::nodes, begin ? R::angular_velocity : R::free_angular_velocity).data(Depth::begin);
+    for (int k = 0; k < d; ++k) out[k] = v[n * d + k];
+    for (int k = 0; k < nr; ++k) out[d + k] = w[n * nr + k];
+  }
+
+  /// Rows of the local frame applied to [I, −[r]×] (3D) or [I, (−r_y, r_x)ᵀ] (2D), with r
+  /// the lever arm from the centre of mass at the detection configuration.
+  void contact_jacobian(const State& st, const PointOnBody& p, double* H) const override {
+    const int d = st.dimension();
+    const double* c = st.field(R::nodes, R::detection_position).data() + p.nodes[0] * d;
+    const double r[3] = {p.point[0] - c[0], p.point[1] - c[1], d == 3 ? p.point[2] - c[2] : p.point[2] - 0.0};
+    const double* e0 = p.frame;
+    if (d == 2) {
+      for (int i = 0; i < 2; ++i) {
+        const double* e = e0 + 2 * i;
+        H[i * 3 + 0] = e[0];
+        H[i * 3 + 1] = e[1];
+        H[i * 3 + 2] = -e[0] * r[1] + e[1] * r[0];  // e · (ω ẑ × r)
+      }
+      return;
+    }
+    for (int i = 0; i < 3; ++i) {
+      const double* e = e0 + 3 * i;
+      H[i * 6 + 0] = e[0];
+      H[i * 6 + 1] = e[1];
+      H[i * 6 + 2] = e[2];
+      // e · (ω × r) = ω · (r × e)
+      H[i * 6 + 3] = r[1] * e[2] - r[2] * e[1];
+      H[i * 6 + 4] = r[2] * e[0] - r[0] * e[2];
+      H[i * 6 + 5] = r[0] * e[1] - r[1] * e[0];
+    }
+  }
+
  private:
   /// Moves the body origin to the body-frame point c (both depths): x += R c, v += ω × R c.
   static void move_origin(State& st, std::size_t b, const std::array<double, 3>& c) {
     const int d = st.dimension();
     double r[3] = {0, 0, 0}, wxr[3] = {0, 0, 0};
     if (d == 2) {
-      const double a = st.field(R::angle).row(b)[0], w = st.field(R::angular_velocity).row(b)[0];
+      const double a = st.field(R::nodes, R::angle).row(b)[0], w = st.field(R::nodes, R::angular_velocity).row(b)[0];
       r[0] = std::cos(a) * c[0] - std::sin(a) * c[1];
       r[1] = std::sin(a) * c[0] + std::cos(a) * c[1];
       wxr[0] = -w * r[1];
       wxr[1] = w * r[0];
     } else {
-      const auto q = st.field(R::orientation).row(b);
-      const auto w = st.field(R::angular_velocity).row(b);
+      const auto q = st.field(R::nodes, R::orientation).row(b);
+      const auto w = st.field(R::nodes, R::angular_velocity).row(b);
       // r = q c q*: t = 2 u × c, r = c + w t + u × t (u the vector part).
       const double u[3] = {q[1], q[2], q[3]};
       const double t[3] = {2 * (u[1] * c[2] - u[2] * c[1]), 2 * (u[2] * c[0] - u[0] * c[2]), 2 * (u[0] * c[1] - u[1] * c[0])};
@@ -153,8 +196,8 @@ class Rigid : public Modelization {
       wxr[2] = w[0] * r[1] - w[1] * r[0];
     }
     for (Depth dp : {Depth::begin, Depth::end}) {
-      auto x = st.field(R::position).row(b, dp);
-      auto v = st.field(R::velocity).row(b, dp);
+      auto x = st.field(R::nodes, R::position).row(b, dp);
+      auto v = st.field(R::nodes, R::velocity).row(b, dp);
       for (int k = 0; k < d; ++k) {
         x[k] += r[k];
         v[k] += wxr[k];

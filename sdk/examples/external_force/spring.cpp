@@ -22,8 +22,9 @@ class Spring : public moreau::Force {
   // The force is evaluated on the ⁻ state (explicit in the spring, as the θ-scheme's
   // external forces are given at the start of the step).
   void apply(moreau::StepContext& ctx) override {
-    const auto x = ctx.state.field(moreau::rigid::position).row(body_, moreau::Depth::begin);
-    auto f = ctx.state.field(moreau::rigid::force).row(body_);
+    // The body's node (rigid: its one row in rigid.nodes), whatever other bodies there are.
+    const auto x = ctx.state.node_values(body_, moreau::rigid::position, moreau::Depth::begin);
+    auto f = ctx.state.node_values(body_, moreau::rigid::force);
     for (std::size_t i = 0; i < f.size(); ++i) f[i] += -k_ * (x[i] - anchor_[i]);
   }
 

@@ -74,6 +74,10 @@ struct BuildContext {
   std::string output_dir;  ///< folder of the run's output file (relative output paths resolve here)
   /// Index of the body named `name`; throws InputError at `pointer` if there is none.
   std::function<int(const std::string& name, const std::string& pointer)> body_index;
+  /// The state being built, when the plugin is created after the bodies (forces, hooks):
+  /// a plugin addressing a body can check its modelization (`state->model_of(b)`) and
+  /// fields (`state->has_node_field(b, name)`). Null for modelizations, shapes and laws.
+  const class State* state = nullptr;
 };
 
 using Factory = std::function<std::unique_ptr<Plugin>(const Params&, const BuildContext&)>;

@@ -1,15 +1,21 @@
 #pragma once
-// The State store: all per-body data of a run, one contiguous array per field
-// (structure of arrays, as MuJoCo's mjData), addressable by field name and body.
+// The State store: all the data of a run, as fields on entity sets (docs/architecture.md).
 //
-// A field with two time depths holds the values at the beginning (⁻) and at the end
-// (⁺) of the step; `swap_depths()` exchanges the two buffers at the end of a step (no
-// copy), so the end buffer then holds stale values that the next step overwrites.
+// An entity set is a kind of row: the kernel's `bodies` (one row per scene body) and
+// `contacts` (one row per contact of the current step), and each modelization's own sets
+// (its nodes, its elements: `rigid.nodes` holds one row per rigid body). A field lives on
+// one set and is one contiguous array [rows × components] per time depth (structure of
+// arrays, as MuJoCo's mjData). A field with two depths holds the values at the beginning
+// (⁻) and at the end (⁺) of the step; `swap_depths()` exchanges the two buffers at the end
+// of a step (no copy), so the end buffer then holds stale values that the next step
+// overwrites.
 //
-// Which fields exist is declared by tables of FieldSpec (a modelization's table, see
-// plugins/modelization/rigid/rigid_fields.hpp): the same table drives allocation,
-// the HDF5 output (`output`), restart (`restart`) and the docs (`moreau plugins`).
+// Which fields exist is declared by tables of FieldSpec (the kernel's, each
+// modelization's): the same table drives allocation, the HDF5 output (`output`), restart
+// (`restart`), the carrying over of rows rebuilt each step (`persist`) and the docs
+// (`moreau plugins`).
 #include <cstddef>
+#include <cstdint>
 #include <deque>
 #include <map>
 #include <moreau/error.hpp>
@@ -21,23 +27,46 @@ namespace moreau {
 
 enum class Depth { begin = 0, end = 1 };
 
-/// Where a field goes in the output file.
+/// Where a field goes in the output file (docs/output.md).
 enum class FieldOutput {
-  none,    ///< working data, never written
-  frame,   ///< /frames/NNNNNNNN/<name>, every frame (the end-of-step values)
-  bodies,  ///< /bodies/<name>, once (constant over a run)
+  none,   ///< working data, never written
+  frame,  ///< /frames/NNNNNNNN/<set>/<name>, every frame (the end-of-step values)
+  once,   ///< /<set>/<name>, once (constant over a run)
 };
+
+/// How a field is written to the file; every field is stored as double in memory.
+enum class FileType { real, int32, int8 };
+
+/// When the kernel allocates a field: a scene pays only for what it uses.
+enum class Needed {
+  always,
+  contacts,  ///< the scene has interactions
+  forces,    ///< the scene has external-force plugins (the field is zeroed at stage external_forces)
+  imposed,   ///< the scene has drivers or hooks (imposed velocities; filled with NaN = free)
+};
+
+/// The kernel's sets and the modelizations' set names are fixed strings; a modelization's
+/// sets are named "<model>.<set>" (e.g. "rigid.nodes"), the kernel's have no dot.
+namespace sets {
+inline constexpr const char* bodies = "bodies";
+inline constexpr const char* contacts = "contacts";
+}  // namespace sets
 
 struct FieldSpec {
   std::string name;
-  int components_2d = 1;  ///< values per body in 2D scenes (0: field absent in 2D)
-  int components_3d = 1;  ///< values per body in 3D scenes (0: field absent in 3D)
+  std::string set;        ///< the entity set whose rows it has
+  int components_2d = 1;  ///< values per row in 2D scenes (0: field absent in 2D)
+  int components_3d = 1;  ///< values per row in 3D scenes (0: field absent in 3D)
   int depths = 1;         ///< 1, or 2 for fields with ⁻ and ⁺ values
   std::string units;      ///< SI units, "1" for dimensionless
   std::string doc;
   FieldOutput output = FieldOutput::none;
   bool restart = false;   ///< part of the dynamic state a restart must restore
-  bool as_int8 = false;   ///< written as int8 (flags); stored as double like every field
+  /// Rows rebuilt each step (contacts): the values at Depth::begin are carried over to the
+  /// new row of the same identity (the warm start; laws' internal variables). New rows: 0.
+  bool persist = false;
+  FileType file = FileType::real;
+  Needed needed = Needed::always;
 
   int components(int dim) const { return dim == 2 ? components_2d : components_3d; }
 };
@@ -49,27 +78,36 @@ class Field {
   const FieldSpec& spec() const { return spec_; }
   const std::string& name() const { return spec_.name; }
   int components() const { return comps_; }
-  std::size_t bodies() const { return n_; }
+  std::size_t rows() const { return n_; }
 
-  /// The contiguous array [bodies × components] of one depth.
+  /// The contiguous array [rows × components] of one depth.
   double* data(Depth d = Depth::end) { return buf_[index(d)].data(); }
   const double* data(Depth d = Depth::end) const { return buf_[index(d)].data(); }
-  std::span<double> row(std::size_t body, Depth d = Depth::end) {
-    return {data(d) + body * comps_, static_cast<std::size_t>(comps_)};
+  std::span<double> row(std::size_t r, Depth d = Depth::end) {
+    return {data(d) + r * comps_, static_cast<std::size_t>(comps_)};
   }
-  std::span<const double> row(std::size_t body, Depth d = Depth::end) const {
-    return {data(d) + body * comps_, static_cast<std::size_t>(comps_)};
+  std::span<const double> row(std::size_t r, Depth d = Depth::end) const {
+    return {data(d) + r * comps_, static_cast<std::size_t>(comps_)};
+  }
+  /// Rows [first, first + count) of one depth, contiguous.
+  std::span<double> rows(std::size_t first, std::size_t count, Depth d = Depth::end) {
+    return {data(d) + first * comps_, count * comps_};
+  }
+  std::span<const double> rows(std::size_t first, std::size_t count, Depth d = Depth::end) const {
+    return {data(d) + first * comps_, count * comps_};
   }
 
+  /// Resizes to n rows, keeping the values of the rows that stay; new rows get `fill`.
   void resize(std::size_t n, double fill = 0.0) {
     n_ = n;
-    for (int k = 0; k < spec_.depths; ++k) buf_[k].assign(n * comps_, fill);
+    for (int k = 0; k < spec_.depths; ++k) buf_[k].resize(n * comps_, fill);
   }
   void swap_depths() {
     if (spec_.depths == 2) std::swap(buf_[0], buf_[1]);
   }
 
  private:
+  friend class EntitySet;
   int index(Depth d) const { return spec_.depths == 2 ? static_cast<int>(d) : 0; }
   FieldSpec spec_;
   int comps_;
@@ -77,55 +115,213 @@ class Field {
   std::vector<double> buf_[2];
 };
 
-class State {
+/// Rows of one kind of entity, and the fields on them.
+class EntitySet {
  public:
-  explicit State(int dimension = 3) : dim_(dimension) {}
+  EntitySet(std::string name, int dim) : name_(std::move(name)), dim_(dim) {}
 
-  int dimension() const { return dim_; }
-  std::size_t bodies() const { return names_.size(); }
+  const std::string& name() const { return name_; }
+  std::size_t rows() const { return rows_; }
 
-  /// Declares a field (before or after bodies are added). Declaring the same name twice
-  /// with the same shape is allowed (two plugins needing one field); different shapes not.
+  /// Declares a field of this set. Declaring the same name twice with the same shape is
+  /// allowed (two plugins needing one field); different shapes not.
   Field& declare(const FieldSpec& spec) {
     const int comps = spec.components(dim_);
     auto it = index_.find(spec.name);
     if (it != index_.end()) {
       Field& f = fields_[it->second];
       if (f.components() != comps || f.spec().depths != spec.depths)
-        throw std::logic_error("field '" + spec.name + "' declared twice with different shapes");
+        throw std::logic_error("field '" + name_ + "/" + spec.name + "' declared twice with different shapes");
       return f;
     }
-    if (comps <= 0) throw std::logic_error("field '" + spec.name + "' does not exist in this dimension");
+    if (comps <= 0) throw std::logic_error("field '" + name_ + "/" + spec.name + "' does not exist in this dimension");
     index_[spec.name] = fields_.size();
     fields_.emplace_back(spec, comps);
-    fields_.back().resize(bodies());
+    fields_.back().spec_.set = name_;
+    fields_.back().resize(rows_, spec.needed == Needed::imposed ? nan_fill() : 0.0);
     return fields_.back();
-  }
-  void declare(const std::vector<FieldSpec>& table) {
-    for (const auto& s : table)
-      if (s.components(dim_) > 0) declare(s);
-  }
-
-  /// Adds n bodies (zero-filled in every field); returns the index of the first.
-  std::size_t add_bodies(const std::vector<std::string>& names) {
-    const std::size_t first = names_.size();
-    for (const auto& n : names) names_.push_back(n);
-    for (auto& f : fields_) {
-      std::vector<double> keep[2];
-      for (int d = 0; d < f.spec().depths; ++d)
-        keep[d].assign(f.data(static_cast<Depth>(d)), f.data(static_cast<Depth>(d)) + first * f.components());
-      f.resize(names_.size());
-      for (int d = 0; d < f.spec().depths; ++d) std::copy(keep[d].begin(), keep[d].end(), f.data(static_cast<Depth>(d)));
-    }
-    return first;
   }
 
   bool has(const std::string& name) const { return index_.count(name) != 0; }
   Field& field(const std::string& name) { return fields_[lookup(name)]; }
   const Field& field(const std::string& name) const { return fields_[lookup(name)]; }
+  /// nullptr when the set has no such field.
+  Field* find(const std::string& name) {
+    auto it = index_.find(name);
+    return it == index_.end() ? nullptr : &fields_[it->second];
+  }
+  const Field* find(const std::string& name) const {
+    auto it = index_.find(name);
+    return it == index_.end() ? nullptr : &fields_[it->second];
+  }
   std::deque<Field>& fields() { return fields_; }
   const std::deque<Field>& fields() const { return fields_; }
 
+  /// Appends n rows (zero in every field, NaN in imposed ones); returns the first.
+  std::size_t add_rows(std::size_t n) {
+    const std::size_t first = rows_;
+    rows_ += n;
+    for (auto& f : fields_) f.resize(rows_, f.spec().needed == Needed::imposed ? nan_fill() : 0.0);
+    return first;
+  }
+
+  /// The rows anew (rows rebuilt each step: contacts): new row i continues old row
+  /// `from[i]` (−1: a new entity). Persistent fields carry their Depth::begin values (both
+  /// depths of the new row get them); the other fields are zeroed.
+  void rebuild(const std::vector<std::ptrdiff_t>& from) {
+    const std::size_t n = from.size();
+    for (auto& f : fields_) {
+      const int c = f.comps_;
+      if (f.spec().persist) {
+        std::vector<double> carried(n * c, 0.0);
+        const double* old = f.data(Depth::begin);
+        for (std::size_t i = 0; i < n; ++i)
+          if (from[i] >= 0)
+            for (int k = 0; k < c; ++k) carried[i * c + k] = old[static_cast<std::size_t>(from[i]) * c + k];
+        f.n_ = n;
+        if (f.spec().depths == 2) f.buf_[1] = carried;
+        f.buf_[0] = std::move(carried);
+      } else {
+        f.n_ = n;
+        for (int d = 0; d < f.spec().depths; ++d) f.buf_[d].assign(n * c, 0.0);
+      }
+    }
+    rows_ = n;
+  }
+
+  void swap_depths() {
+    for (auto& f : fields_) f.swap_depths();
+  }
+
+ private:
+  static double nan_fill() { return __builtin_nan(""); }
+  std::size_t lookup(const std::string& name) const {
+    auto it = index_.find(name);
+    if (it == index_.end()) throw std::logic_error("no field '" + name + "' in the set '" + name_ + "'");
+    return it->second;
+  }
+  std::string name_;
+  int dim_;
+  std::size_t rows_ = 0;
+  std::deque<Field> fields_;  // deque: a Field& stays valid when more fields are declared
+  std::map<std::string, std::size_t> index_;
+};
+
+/// A modelization of the scene, as the State records it: its name and its sets.
+struct ModelInfo {
+  std::string name;      ///< the modelization plugin (a body's `model`)
+  std::string nodes;     ///< its node set ("<model>.nodes")
+  std::string elements;  ///< its element set, "" when it has none
+  int node_dofs = 0;     ///< unknowns per node (generalised velocity: rigid 3 in 2D, 6 in 3D)
+};
+
+/// Where a body's data is: its modelization (index into State::models()) and its ranges
+/// of rows in that modelization's node and element sets.
+struct BodyRows {
+  int model = -1;
+  std::size_t first_node = 0, nodes = 0;
+  std::size_t first_element = 0, elements = 0;
+};
+
+/// A body to add: its name, modelization and how many nodes and elements it owns.
+struct BodyLayout {
+  std::string name;
+  int model = 0;
+  std::size_t nodes = 1, elements = 0;
+};
+
+/// The kernel's table of the `bodies` set (DESIGN §5): one row per scene body.
+namespace body_fields {
+inline constexpr const char* model = "model";
+inline constexpr const char* first_node = "first_node";
+inline constexpr const char* nodes = "nodes";
+inline constexpr const char* first_element = "first_element";
+inline constexpr const char* elements = "elements";
+/// In every modelization set: the body each row belongs to (index into `bodies`).
+inline constexpr const char* body = "body";
+}  // namespace body_fields
+
+class State {
+ public:
+  explicit State(int dimension = 3) : dim_(dimension) {
+    auto f = [](const char* name, const char* doc) {
+      FieldSpec s;
+      s.name = name;
+      s.set = sets::bodies;
+      s.units = "1";
+      s.doc = doc;
+      s.output = FieldOutput::once;
+      s.file = FileType::int32;
+      return s;
+    };
+    declare(f(body_fields::model, "its modelization: index into /models/name"));
+    declare(f(body_fields::first_node, "first row of its nodes in its modelization's node set"));
+    declare(f(body_fields::nodes, "number of its nodes"));
+    declare(f(body_fields::first_element, "first row of its elements in its modelization's element set"));
+    declare(f(body_fields::elements, "number of its elements"));
+  }
+  State(const State&) = delete;
+  State& operator=(const State&) = delete;
+
+  int dimension() const { return dim_; }
+
+  // ---- Sets and fields ----------------------------------------------------------------
+  /// The set of that name, created empty if needed.
+  EntitySet& add_set(const std::string& name) {
+    if (EntitySet* s = find_set(name)) return *s;
+    set_index_[name] = sets_.size();
+    sets_.emplace_back(name, dim_);
+    return sets_.back();
+  }
+  bool has_set(const std::string& name) const { return set_index_.count(name) != 0; }
+  EntitySet& set(const std::string& name) { return sets_[set_lookup(name)]; }
+  const EntitySet& set(const std::string& name) const { return sets_[set_lookup(name)]; }
+  EntitySet* find_set(const std::string& name) {
+    auto it = set_index_.find(name);
+    return it == set_index_.end() ? nullptr : &sets_[it->second];
+  }
+  const EntitySet* find_set(const std::string& name) const {
+    auto it = set_index_.find(name);
+    return it == set_index_.end() ? nullptr : &sets_[it->second];
+  }
+  std::deque<EntitySet>& sets() { return sets_; }
+  const std::deque<EntitySet>& sets() const { return sets_; }
+
+  /// Declares a field on its set (`spec.set`, created if needed).
+  Field& declare(const FieldSpec& spec) {
+    if (spec.set.empty()) throw std::logic_error("field '" + spec.name + "' names no set");
+    return add_set(spec.set).declare(spec);
+  }
+  /// Declares the fields of a table that exist in this dimension.
+  void declare(const std::vector<FieldSpec>& table) {
+    for (const auto& s : table)
+      if (s.components(dim_) > 0) declare(s);
+  }
+  bool has(const std::string& set, const std::string& name) const {
+    const EntitySet* s = find_set(set);
+    return s && s->has(name);
+  }
+  Field& field(const std::string& set, const std::string& name) { return this->set(set).field(name); }
+  const Field& field(const std::string& set, const std::string& name) const { return this->set(set).field(name); }
+
+  // ---- Modelizations and bodies -------------------------------------------------------
+  /// Records a modelization (creating its sets); returns its index.
+  int add_model(const ModelInfo& m) {
+    for (std::size_t i = 0; i < models_.size(); ++i)
+      if (models_[i].name == m.name) return static_cast<int>(i);
+    models_.push_back(m);
+    add_set(m.nodes).declare(owner_field(m.nodes));
+    if (!m.elements.empty()) add_set(m.elements).declare(owner_field(m.elements));
+    return static_cast<int>(models_.size() - 1);
+  }
+  const std::vector<ModelInfo>& models() const { return models_; }
+  int find_model(const std::string& name) const {
+    for (std::size_t i = 0; i < models_.size(); ++i)
+      if (models_[i].name == name) return static_cast<int>(i);
+    return -1;
+  }
+
+  std::size_t bodies() const { return names_.size(); }
   const std::vector<std::string>& names() const { return names_; }
   /// Index of a body by name, or -1.
   int find_body(const std::string& name) const {
@@ -134,21 +330,99 @@ class State {
     return -1;
   }
 
+  /// Adds bodies, their rows in `bodies` and their node and element rows in their
+  /// modelizations' sets (zero-filled), all at once; returns the index of the first.
+  std::size_t add_bodies(const std::vector<BodyLayout>& bodies) {
+    const std::size_t first = names_.size();
+    std::vector<std::size_t> nodes(models_.size(), 0), elements(models_.size(), 0);
+    for (const auto& b : bodies) {
+      if (b.model < 0 || static_cast<std::size_t>(b.model) >= models_.size())
+        throw std::logic_error("body '" + b.name + "' of an unknown modelization");
+      nodes[b.model] += b.nodes;
+      elements[b.model] += b.elements;
+    }
+    std::vector<std::size_t> next_node(models_.size()), next_element(models_.size());
+    for (std::size_t m = 0; m < models_.size(); ++m) {
+      next_node[m] = set(models_[m].nodes).add_rows(nodes[m]);
+      if (!models_[m].elements.empty()) next_element[m] = set(models_[m].elements).add_rows(elements[m]);
+      else if (elements[m] > 0) throw std::logic_error("modelization '" + models_[m].name + "' has no element set");
+    }
+    EntitySet& bs = set(sets::bodies);
+    bs.add_rows(bodies.size());
+    for (std::size_t i = 0; i < bodies.size(); ++i) {
+      const auto& b = bodies[i];
+      const std::size_t row = first + i;
+      names_.push_back(b.name);
+      bs.field(body_fields::model).data()[row] = b.model;
+      bs.field(body_fields::first_node).data()[row] = static_cast<double>(next_node[b.model]);
+      bs.field(body_fields::nodes).data()[row] = static_cast<double>(b.nodes);
+      bs.field(body_fields::first_element).data()[row] = static_cast<double>(next_element[b.model]);
+      bs.field(body_fields::elements).data()[row] = static_cast<double>(b.elements);
+      double* owner = set(models_[b.model].nodes).field(body_fields::body).data();
+      for (std::size_t k = 0; k < b.nodes; ++k) owner[next_node[b.model] + k] = static_cast<double>(row);
+      if (b.elements > 0) {
+        double* eo = set(models_[b.model].elements).field(body_fields::body).data();
+        for (std::size_t k = 0; k < b.elements; ++k) eo[next_element[b.model] + k] = static_cast<double>(row);
+      }
+      next_node[b.model] += b.nodes;
+      next_element[b.model] += b.elements;
+    }
+    return first;
+  }
+
+  /// Where body `b`'s data is.
+  BodyRows body(std::size_t b) const {
+    const EntitySet& bs = set(sets::bodies);
+    BodyRows r;
+    r.model = static_cast<int>(bs.field(body_fields::model).data()[b]);
+    r.first_node = static_cast<std::size_t>(bs.field(body_fields::first_node).data()[b]);
+    r.nodes = static_cast<std::size_t>(bs.field(body_fields::nodes).data()[b]);
+    r.first_element = static_cast<std::size_t>(bs.field(body_fields::first_element).data()[b]);
+    r.elements = static_cast<std::size_t>(bs.field(body_fields::elements).data()[b]);
+    return r;
+  }
+  const ModelInfo& model_of(std::size_t b) const { return models_[static_cast<std::size_t>(body(b).model)]; }
+
+  /// The values of a node field for all of body `b`'s nodes ([nodes × components],
+  /// contiguous: a body's nodes are consecutive rows). A rigid body has one node, so this
+  /// is its row. Throws std::logic_error when the body's modelization has no such field.
+  std::span<double> node_values(std::size_t b, const std::string& name, Depth d = Depth::end) {
+    const BodyRows r = body(b);
+    return field(models_[r.model].nodes, name).rows(r.first_node, r.nodes, d);
+  }
+  std::span<const double> node_values(std::size_t b, const std::string& name, Depth d = Depth::end) const {
+    const BodyRows r = body(b);
+    return field(models_[r.model].nodes, name).rows(r.first_node, r.nodes, d);
+  }
+  /// Whether body `b`'s modelization has the node field `name`.
+  bool has_node_field(std::size_t b, const std::string& name) const { return has(model_of(b).nodes, name); }
+
   /// End of step: ⁺ values become the ⁻ values of the next step (buffers swapped).
   void swap_depths() {
-    for (auto& f : fields_) f.swap_depths();
+    for (auto& s : sets_) s.swap_depths();
   }
 
  private:
-  std::size_t lookup(const std::string& name) const {
-    auto it = index_.find(name);
-    if (it == index_.end()) throw std::logic_error("no field '" + name + "' in the state");
+  static FieldSpec owner_field(const std::string& set) {
+    FieldSpec s;
+    s.name = body_fields::body;
+    s.set = set;
+    s.units = "1";
+    s.doc = "the body of each row (index into /bodies)";
+    s.output = FieldOutput::once;
+    s.file = FileType::int32;
+    return s;
+  }
+  std::size_t set_lookup(const std::string& name) const {
+    auto it = set_index_.find(name);
+    if (it == set_index_.end()) throw std::logic_error("no set '" + name + "' in the state");
     return it->second;
   }
   int dim_;
   std::vector<std::string> names_;
-  std::deque<Field> fields_;  // deque: a Field& stays valid when more fields are declared
-  std::map<std::string, std::size_t> index_;
+  std::vector<ModelInfo> models_;
+  std::deque<EntitySet> sets_;  // deque: references stay valid when sets are added
+  std::map<std::string, std::size_t> set_index_;
 };
 
 }  // namespace moreau

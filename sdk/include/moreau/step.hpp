@@ -15,8 +15,8 @@ struct StepContext {
   /// True when the scene has external-force plugins: the `force` and `torque` fields were
   /// zeroed and filled at stage external_forces. False: they hold nothing and are not read.
   bool external_forces = false;
-  /// True when the contact stages wrote this step's contact impulses into the `impulse`
-  /// and `angular_impulse` fields. False: those fields are not read.
+  /// True when the contact stages wrote this step's contact impulses into the node field
+  /// `reaction` (Hᵀ r) of every modelization. False: that field is not read.
   bool contact_impulses = false;
 };
 

@@ -13,7 +13,7 @@ class TestForce : public moreau::Force {
   }
   static constexpr const char* doc = "test force";
   TestForce(const moreau::Params& p, const moreau::BuildContext&) : magnitude_(p.has("magnitude") ? p.number("magnitude") : 1.0) {}
-  void apply(moreau::StepContext& ctx) override { ctx.state.field("force").row(0)[0] += magnitude_; }
+  void apply(moreau::StepContext& ctx) override { ctx.state.node_values(0, "force")[0] += magnitude_; }
 
  private:
   double magnitude_;
