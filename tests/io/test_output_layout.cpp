@@ -7,6 +7,7 @@
 #include <sstream>
 
 #include "cli_runner.hpp"
+#include "h5_read.hpp"
 #include "kernel/io/restart.hpp"
 
 namespace fs = std::filesystem;
@@ -68,7 +69,7 @@ TEST(OutputLayout, FollowsTheContract2D) {
   const std::string path = (dir / "out.h5").string();
   hid_t f = H5Fopen(path.c_str(), H5F_ACC_RDONLY, H5P_DEFAULT);
   ASSERT_GE(f, 0);
-  EXPECT_EQ(string_attribute(f, "format"), "moreau-output/1");
+  EXPECT_EQ(string_attribute(f, "format"), "moreau-output/2");
   EXPECT_EQ(string_attribute(f, "scene"), std::string(kScene2D)) << "the scene is stored verbatim";
   EXPECT_EQ(shape(f, "/bodies/name"), (std::vector<hsize_t>{2}));
   EXPECT_EQ(shape(f, "/bodies/mass"), (std::vector<hsize_t>{2}));
@@ -92,6 +93,20 @@ TEST(OutputLayout, FollowsTheContract2D) {
     H5Gclose(g);
   }
   EXPECT_EQ(H5Lexists(f, "/frames/00000001", H5P_DEFAULT), 0);
+  // moreau-output/2: the sets, and for this rigid-only scene the v1 names as second names of
+  // the same datasets (hard links: stored once).
+  EXPECT_EQ(shape(f, "/rigid.nodes/mass"), (std::vector<hsize_t>{2}));
+  EXPECT_EQ(shape(f, "/bodies/model"), (std::vector<hsize_t>{2}));
+  EXPECT_EQ(shape(f, "/bodies/first_node"), (std::vector<hsize_t>{2}));
+  EXPECT_EQ(shape(f, "/models/name"), (std::vector<hsize_t>{1}));
+  EXPECT_EQ(shape(f, "/frames/00000004/rigid.nodes/position"), (std::vector<hsize_t>{2, 2}));
+  auto address = [&](const char* path) {
+    H5O_info_t info;
+    H5Oget_info_by_name(f, path, &info, H5P_DEFAULT);
+    return info.addr;
+  };
+  EXPECT_EQ(address("/frames/00000004/position"), address("/frames/00000004/rigid.nodes/position"));
+  EXPECT_EQ(address("/bodies/mass"), address("/rigid.nodes/mass"));
   H5Fclose(f);
   // The viewer description sits beside it and names every frame.
   std::ifstream x(dir / "out.xmf");
@@ -101,6 +116,32 @@ TEST(OutputLayout, FollowsTheContract2D) {
   for (const char* fr : {"out.h5:/frames/00000000/position", "out.h5:/frames/00000005/position"})
     EXPECT_NE(ss.str().find(fr), std::string::npos) << fr;
   EXPECT_NE(ss.str().find("GeometryType=\"XY\""), std::string::npos);
+}
+
+// A moreau-output/1 file (written by moreau before the sets, tests/io/data) still restarts:
+// the continuation equals this moreau's own uninterrupted run, bit for bit, contacts (and
+// their warm start) included.
+TEST(OutputLayout, RestartsFromAVersion1File) {
+  const fs::path dir = scratch_dir("restart_v1");
+  const fs::path data = fs::path(MOREAU_SOURCE_DIR) / "tests" / "io" / "data";
+  fs::copy_file(data / "box_stack_v1.json", dir / "scene.json");
+  fs::copy_file(data / "box_stack_v1.h5", dir / "v1.h5");
+  ASSERT_EQ(run_moreau({"run", "scene.json", "--out", "full.h5", "--quiet"}, dir).code, 0);
+  Result r = run_moreau({"run", "scene.json", "--restart", "v1.h5", "--out", "rest.h5", "--quiet"}, dir);
+  ASSERT_EQ(r.code, 0) << r.err;
+  for (const char* p : {"position", "orientation", "velocity", "angular_velocity", "contacts/impulse"}) {
+    const auto a = moreau_test::read_doubles((dir / "full.h5").string(), std::string("/frames/00000300/") + p);
+    const auto b = moreau_test::read_doubles((dir / "rest.h5").string(), std::string("/frames/00000300/") + p);
+    ASSERT_EQ(a.size(), b.size()) << p;
+    ASSERT_FALSE(a.empty()) << p;
+    for (std::size_t i = 0; i < a.size(); ++i) EXPECT_EQ(a[i], b[i]) << p << "[" << i << "]";
+  }
+  // The v1 file's frames read as this moreau writes them, where both have them.
+  for (const char* p : {"position", "contacts/key", "contacts/normal_force"}) {
+    const auto a = moreau_test::read_doubles((dir / "full.h5").string(), std::string("/frames/00000150/") + p);
+    const auto b = moreau_test::read_doubles((dir / "v1.h5").string(), std::string("/frames/00000150/") + p);
+    EXPECT_EQ(a, b) << p;
+  }
 }
 
 TEST(OutputLayout, RestartFrameSelectionErrors) {
