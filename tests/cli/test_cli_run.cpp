@@ -70,6 +70,17 @@ TEST(CliRun, PluginsListsKindsNamesAndParameters) {
       EXPECT_FALSE(m["body_parameters_2d"].empty());
     }
   EXPECT_TRUE(rigid);
+  // The kernel's own sets, from the same tables: the contacts' impulse persists and restarts.
+  ASSERT_TRUE(j.contains("kernel"));
+  bool impulse = false;
+  for (const auto& f : j["kernel"][0]["fields"])
+    if (f["set"] == "contacts" && f["name"] == "impulse") impulse = f["persist"] == true && f["restart"] == true;
+  EXPECT_TRUE(impulse);
+  for (const auto& m : j["modelization"])
+    if (m["name"] == "rigid") {
+      EXPECT_EQ(m["node_set"], "rigid.nodes");
+      EXPECT_EQ(m["default_integrator"], "theta");
+    }
   Result text = run_moreau({"plugins"});
   EXPECT_EQ(text.code, 0);
   EXPECT_NE(text.out.find("integrator:"), std::string::npos);

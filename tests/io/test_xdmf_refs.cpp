@@ -17,6 +17,7 @@
 
 #include "cli_runner.hpp"
 #include "display_scenes.hpp"
+#include "mixed_scenes.hpp"
 
 extern char** environ;
 namespace fs = std::filesystem;
@@ -93,6 +94,20 @@ TEST(Xdmf, NamesOnlyExistingDatasets) {
     const Result res = run_moreau({"run", scene.string(), "--quiet"}, dir);
     ASSERT_EQ(res.code, 0) << res.err;
     EXPECT_EQ(check_xdmf(dir), (std::set<std::string>{"bodies", "shapes", "contacts", "force_network"})) << d << "D";
+  }
+}
+
+// A scene with rigid bodies and chains (tests/mixed): a grid per modelization (the chain's
+// springs as lines over its nodes), the shapes, the contacts and the force network between
+// the bodies' reference points.
+TEST(Xdmf, MixedScenesDrawEachModelization) {
+  for (int d : {2, 3}) {
+    const fs::path dir = scratch_dir("xdmf_mixed" + std::to_string(d));
+    const fs::path scene = write_file(dir, "scene.json", mixed_scene(d, R"({"type": "auto"})", 0.005, 1));
+    const Result res = run_moreau({"run", scene.string(), "--quiet"}, dir);
+    ASSERT_EQ(res.code, 0) << res.err;
+    EXPECT_EQ(check_xdmf(dir), (std::set<std::string>{"rigid.nodes", "chain.nodes", "shapes", "contacts", "force_network"}))
+        << d << "D";
   }
 }
 

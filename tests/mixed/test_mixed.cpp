@@ -228,3 +228,25 @@ TEST(Mixed, OutputHasTheSetsAndTheirMaps) {
   const auto p = read_doubles(out, "/frames/00000010/bodies/position");
   EXPECT_NEAR(p[2], (x[0] + x[2] + x[4] + x[6]) / 4, 1e-15);
 }
+
+// `models` pairs a modelization with its integrator; a modelization no body uses, and a
+// contactor on a node the body does not have, are input errors naming the place.
+TEST(Mixed, ModelsSectionAndNodeErrors) {
+  const fs::path dir = scratch_dir("mixed_models");
+  const std::string ok = R"(, "models": {"rigid": {"integrator": "theta"}, "chain": {"integrator": "chain_theta"}})";
+  fs::path scene = write_file(dir, "scene.json", mixed_scene(2, R"({"type": "auto"})", 0.01, 10, ok));
+  Result r = run_moreau({"run", scene.string(), "--quiet"}, dir);
+  EXPECT_EQ(r.code, 0) << r.err;
+  scene = write_file(dir, "bad.json", mixed_scene(2, R"({"type": "auto"})", 0.01, 10, R"(, "models": {"chian": {}})"));
+  r = run_moreau({"check", scene.string()}, dir);
+  EXPECT_EQ(r.code, 2);
+  EXPECT_NE(r.err.find("at /models/chian: no body uses the modelization \"chian\"; did you mean \"chain\"?"), std::string::npos)
+      << r.err;
+  std::string text = mixed_scene(2);
+  text.replace(text.find("\"node\": 3"), 9, "\"node\": 4");
+  scene = write_file(dir, "node.json", text);
+  r = run_moreau({"check", scene.string()}, dir);
+  EXPECT_EQ(r.code, 2);
+  EXPECT_NE(r.err.find("/bodies/1/contactors/3/node: body \"chain\" has 4 nodes: expected a node below 4"), std::string::npos)
+      << r.err;
+}
