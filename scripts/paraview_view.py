@@ -8,6 +8,7 @@ force network as tubes whose radius and colour follow the normal force (docs/out
 """
 import argparse
 import os
+import xml.etree.ElementTree as ET
 
 from paraview.simple import (CellDatatoPointData, ColorBy, ExtractBlock, ExtractSurface, GetActiveViewOrCreate,
                              Glyph, SaveScreenshot, SaveState, Show, Shrink, Tube, XDMFReader)
@@ -27,6 +28,17 @@ def build(xmf):
     shown.Representation = 'Surface With Edges'
     shown.Opacity = 0.3
     ColorBy(shown, None)
+    # Modelizations with elements (moreau-output/2 scenes that are not rigid-only): each
+    # one's grid, its cells drawn over its nodes (a chain's springs as lines, a mesh).
+    grids = [g.get('Name') for g in ET.parse(xmf).getroot().find('Domain').findall('Grid')]
+    for name in grids:
+        if name.endswith('.nodes') and name != 'rigid.nodes':
+            mesh = Show(ExtractBlock(Input=reader, Selectors=['/Root/' + name]), view)
+            mesh.Representation = 'Surface With Edges'
+            mesh.LineWidth = 3
+            mesh.PointSize = 6
+            ColorBy(mesh, None)
+            mesh.AmbientColor = mesh.DiffuseColor = mesh.EdgeColor = [0.8, 0.2, 0.1]
     contacts = ExtractBlock(Input=reader, Selectors=['/Root/contacts'])
     contacts.UpdatePipeline(time)
     if contacts.GetDataInformation().GetNumberOfPoints() > 0:

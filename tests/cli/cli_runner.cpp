@@ -1,6 +1,7 @@
 #include "cli_runner.hpp"
 
 #include <fcntl.h>
+#include <signal.h>
 #include <spawn.h>
 #include <sys/wait.h>
 #include <unistd.h>
@@ -35,9 +36,8 @@ static std::string slurp(const fs::path& p) {
   return ss.str();
 }
 
-Result run_moreau(const std::vector<std::string>& args, const fs::path& cwd_in) {
-  const fs::path cwd = cwd_in.empty() ? scratch_dir("run") : cwd_in;
-  const fs::path out = cwd / ".stdout", err = cwd / ".stderr";
+/// Starts moreau with `args` in `cwd`, stdout and stderr to files there; returns its pid.
+static pid_t spawn(const std::vector<std::string>& args, const fs::path& cwd, const fs::path& out, const fs::path& err) {
   posix_spawn_file_actions_t fa;
   posix_spawn_file_actions_init(&fa);
   posix_spawn_file_actions_addopen(&fa, 1, out.c_str(), O_WRONLY | O_CREAT | O_TRUNC, 0644);
@@ -56,6 +56,13 @@ Result run_moreau(const std::vector<std::string>& args, const fs::path& cwd_in) 
   fs::current_path(old);
   posix_spawn_file_actions_destroy(&fa);
   if (rc != 0) throw std::runtime_error("cannot start " MOREAU_EXE);
+  return pid;
+}
+
+Result run_moreau(const std::vector<std::string>& args, const fs::path& cwd_in) {
+  const fs::path cwd = cwd_in.empty() ? scratch_dir("run") : cwd_in;
+  const fs::path out = cwd / ".stdout", err = cwd / ".stderr";
+  const pid_t pid = spawn(args, cwd, out, err);
   int status = 0;
   waitpid(pid, &status, 0);
   Result r;
@@ -65,6 +72,17 @@ Result run_moreau(const std::vector<std::string>& args, const fs::path& cwd_in) 
   fs::remove(out);
   fs::remove(err);
   return r;
+}
+
+pid_t start_moreau(const std::vector<std::string>& args, const fs::path& cwd) {
+  return spawn(args, cwd, cwd / ".bg_stdout", cwd / ".bg_stderr");
+}
+
+bool kill_moreau(pid_t pid) {
+  kill(pid, SIGKILL);
+  int status = 0;
+  waitpid(pid, &status, 0);
+  return WIFSIGNALED(status);
 }
 
 }  // namespace moreau_test

@@ -117,17 +117,12 @@ TEST(Restart, AfterSigkillTheFileIsReadableAndTheRunContinuesBitIdentically) {
   const fs::path dir = scratch_dir("restart_kill");
   const fs::path scene = write_file(dir, "scene.json", spinning_scene(20.0));  // 20000 steps
   // Start a long run, kill it while it writes.
-  std::string exe = MOREAU_EXE, run = "run", sc = scene.string(), o = "--out", path = (dir / "killed.h5").string(), q = "--quiet";
-  char* argv[] = {exe.data(), run.data(), sc.data(), o.data(), path.data(), q.data(), nullptr};
-  pid_t pid;
-  ASSERT_EQ(posix_spawn(&pid, MOREAU_EXE, nullptr, nullptr, argv, environ), 0);
+  const std::string path = (dir / "killed.h5").string();
+  const pid_t pid = start_moreau({"run", scene.string(), "--out", path, "--quiet"}, dir);
   // Wait until a few frames exist, then kill without warning.
   for (int i = 0; i < 200 && !fs::exists(path); ++i) std::this_thread::sleep_for(std::chrono::milliseconds(10));
   std::this_thread::sleep_for(std::chrono::milliseconds(150));
-  kill(pid, SIGKILL);
-  int status;
-  waitpid(pid, &status, 0);
-  ASSERT_TRUE(WIFSIGNALED(status));
+  ASSERT_TRUE(kill_moreau(pid));
   const auto frames = frame_names(path);  // readable after the kill
   ASSERT_FALSE(frames.empty());
   const long last = std::stol(frames.back());

@@ -29,40 +29,25 @@ inline constexpr const char* stiffness = "stiffness";
 inline constexpr const char* tension = "tension";
 
 inline std::vector<FieldSpec> fields() {
-  auto f = [](const char* set, const char* name, int c2, int c3, int depths, const char* units, FieldOutput out, bool restart,
-              const char* doc, FileType type = FileType::real, Needed needed = Needed::always) {
-    FieldSpec s;
-    s.name = name;
-    s.set = set;
-    s.components_2d = c2;
-    s.components_3d = c3;
-    s.depths = depths;
-    s.units = units;
-    s.output = out;
-    s.restart = restart;
-    s.doc = doc;
-    s.file = type;
-    s.needed = needed;
-    return s;
-  };
+  using moreau::field_spec;
   namespace N = moreau::node_fields;
   using O = FieldOutput;
   return {
-      f(nodes, N::position, 2, 3, 2, "m", O::frame, true, "node position"),
-      f(nodes, velocity, 2, 3, 2, "m/s", O::frame, true, "node velocity"),
-      f(nodes, rest_position, 2, 3, 1, "m", O::once, false, "position at rest (springs unstretched)"),
-      f(nodes, mass, 1, 1, 1, "kg", O::once, false, "node mass"),
-      f(nodes, free_velocity, 2, 3, 1, "m/s", O::none, false, "velocity at the end of the step without contact impulses"),
-      f(nodes, N::force, 2, 3, 1, "N", O::none, false, "external force of the step", FileType::real, Needed::forces),
-      f(nodes, N::reaction, 2, 3, 1, "N s", O::none, false, "contact impulse of the step (H^T r)", FileType::real,
+      field_spec(nodes, N::position, 2, 3, 2, "m", O::frame, true, "node position"),
+      field_spec(nodes, velocity, 2, 3, 2, "m/s", O::frame, true, "node velocity"),
+      field_spec(nodes, rest_position, 2, 3, 1, "m", O::once, false, "position at rest (springs unstretched)"),
+      field_spec(nodes, mass, 1, 1, 1, "kg", O::once, false, "node mass"),
+      field_spec(nodes, free_velocity, 2, 3, 1, "m/s", O::none, false, "velocity at the end of the step without contact impulses"),
+      field_spec(nodes, N::force, 2, 3, 1, "N", O::none, false, "external force of the step", FileType::real, Needed::forces),
+      field_spec(nodes, N::reaction, 2, 3, 1, "N s", O::none, false, "contact impulse of the step (H^T r)", FileType::real,
         Needed::contacts),
-      f(nodes, N::detection_position, 2, 3, 1, "m", O::none, false, "position at q + (1-theta) h v", FileType::real,
+      field_spec(nodes, N::detection_position, 2, 3, 1, "m", O::none, false, "position at q + (1-theta) h v", FileType::real,
         Needed::contacts),
-      f(nodes, N::travel, 2, 2, 1, "m, rad", O::none, false, "distance bound 2h|v| + h^2|g|; no rotation",
+      field_spec(nodes, N::travel, 2, 2, 1, "m, rad", O::none, false, "distance bound 2h|v| + h^2|g|; no rotation",
         FileType::real, Needed::contacts),
-      f(springs, ends, 2, 2, 1, "1", O::once, false, "its two nodes (rows of chain.nodes)", FileType::int32),
-      f(springs, stiffness, 1, 1, 1, "N/m", O::once, false, "spring constant"),
-      f(springs, tension, 1, 1, 1, "N", O::frame, false, "tension k e.(u_b - u_a) (linearised)"),
+      field_spec(springs, ends, 2, 2, 1, "1", O::once, false, "its two nodes (rows of chain.nodes)", FileType::int32),
+      field_spec(springs, stiffness, 1, 1, 1, "N/m", O::once, false, "spring constant"),
+      field_spec(springs, tension, 1, 1, 1, "N", O::frame, false, "tension k e.(u_b - u_a) (linearised)"),
   };
 }
 

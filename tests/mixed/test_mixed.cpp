@@ -3,10 +3,6 @@
 // every solver on the mixed problems, momentum balance, bit-identical restart (also after
 // SIGKILL), forces and hooks addressing bodies by name, and the moreau-output/2 layout.
 #include <gtest/gtest.h>
-#include <signal.h>
-#include <spawn.h>
-#include <sys/wait.h>
-
 #include <chrono>
 #include <cmath>
 #include <filesystem>
@@ -16,7 +12,6 @@
 #include "h5_read.hpp"
 #include "mixed_scenes.hpp"
 
-extern char** environ;
 namespace fs = std::filesystem;
 using namespace moreau_test;
 
@@ -136,17 +131,11 @@ TEST(Mixed, RestartIsBitIdentical) {
 TEST(Mixed, AfterSigkillTheFileReadsAndTheRunContinuesBitIdentically) {
   const fs::path dir = scratch_dir("mixed_kill");
   const fs::path scene = write_file(dir, "scene.json", mixed_scene(3, R"({"type": "auto", "tolerance": 1e-8})", 100.0, 1));
-  std::string exe = MOREAU_EXE, run = "run", sc = scene.string(), o = "--out", path = (dir / "killed.h5").string(),
-              q = "--quiet";
-  char* argv[] = {exe.data(), run.data(), sc.data(), o.data(), path.data(), q.data(), nullptr};
-  pid_t pid;
-  ASSERT_EQ(posix_spawn(&pid, MOREAU_EXE, nullptr, nullptr, argv, environ), 0);
+  const std::string path = (dir / "killed.h5").string();
+  const pid_t pid = start_moreau({"run", scene.string(), "--out", path, "--quiet"}, dir);
   for (int i = 0; i < 300 && !fs::exists(dir / "killed.h5.frames" / "00000020.h5"); ++i)
     std::this_thread::sleep_for(std::chrono::milliseconds(10));
-  kill(pid, SIGKILL);
-  int status;
-  waitpid(pid, &status, 0);
-  ASSERT_TRUE(WIFSIGNALED(status));
+  ASSERT_TRUE(kill_moreau(pid));
   const auto frames = frame_names(path);  // readable after the kill
   ASSERT_FALSE(frames.empty());
   for (const auto& f : frames)  // every listed frame complete

@@ -30,18 +30,8 @@ inline std::vector<FieldSpec> table() {
   using O = FieldOutput;
   auto f = [](const char* name, int c2, int c3, const char* units, O out, const char* doc, FileType type = FileType::real,
               bool restart = false, bool persist = false) {
-    FieldSpec s;
-    s.name = name;
-    s.set = sets::contacts;
-    s.components_2d = c2;
-    s.components_3d = c3;
-    s.units = units;
-    s.output = out;
-    s.doc = doc;
-    s.file = type;
-    s.restart = restart;
+    FieldSpec s = field_spec(sets::contacts, name, c2, c3, 1, units, out, restart, doc, type, Needed::contacts);
     s.persist = persist;
-    s.needed = Needed::contacts;
     return s;
   };
   return {

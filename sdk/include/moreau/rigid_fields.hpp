@@ -44,19 +44,8 @@ inline std::vector<FieldSpec> fields() {
   using O = FieldOutput;
   auto f = [](const char* name, int c2, int c3, int depths, const char* units, O out, bool restart, const char* doc,
               bool int8 = false, Needed needed = Needed::always) {
-    FieldSpec s;
-    s.name = name;
-    s.set = nodes;
-    s.components_2d = c2;
-    s.components_3d = c3;
-    s.depths = depths;
-    s.units = units;
-    s.output = out;
-    s.restart = restart;
-    s.doc = doc;
-    s.file = int8 ? FileType::int8 : FileType::real;
-    s.needed = needed;
-    return s;
+    return field_spec(nodes, name, c2, c3, depths, units, out, restart, doc, int8 ? FileType::int8 : FileType::real,
+                      needed);
   };
   return {
       f(position, 2, 3, 2, "m", O::frame, true, "position of the body origin (= centre of mass)"),

@@ -71,6 +71,26 @@ struct FieldSpec {
   int components(int dim) const { return dim == 2 ? components_2d : components_3d; }
 };
 
+/// A FieldSpec in one line, for field tables (rigid_fields.hpp, contact_fields.hpp, a
+/// modelization's own): set a few more members on the result when needed (persist, file…).
+inline FieldSpec field_spec(std::string set, std::string name, int components_2d, int components_3d, int depths,
+                            std::string units, FieldOutput output, bool restart, std::string doc,
+                            FileType file = FileType::real, Needed needed = Needed::always) {
+  FieldSpec s;
+  s.name = std::move(name);
+  s.set = std::move(set);
+  s.components_2d = components_2d;
+  s.components_3d = components_3d;
+  s.depths = depths;
+  s.units = std::move(units);
+  s.output = output;
+  s.restart = restart;
+  s.doc = std::move(doc);
+  s.file = file;
+  s.needed = needed;
+  return s;
+}
+
 class Field {
  public:
   Field(FieldSpec spec, int components) : spec_(std::move(spec)), comps_(components) {}
@@ -245,14 +265,7 @@ class State {
  public:
   explicit State(int dimension = 3) : dim_(dimension) {
     auto f = [](const char* name, const char* doc) {
-      FieldSpec s;
-      s.name = name;
-      s.set = sets::bodies;
-      s.units = "1";
-      s.doc = doc;
-      s.output = FieldOutput::once;
-      s.file = FileType::int32;
-      return s;
+      return field_spec(sets::bodies, name, 1, 1, 1, "1", FieldOutput::once, false, doc, FileType::int32);
     };
     declare(f(body_fields::model, "its modelization: index into /models/name"));
     declare(f(body_fields::first_node, "first row of its nodes in its modelization's node set"));
@@ -404,14 +417,8 @@ class State {
 
  private:
   static FieldSpec owner_field(const std::string& set) {
-    FieldSpec s;
-    s.name = body_fields::body;
-    s.set = set;
-    s.units = "1";
-    s.doc = "the body of each row (index into /bodies)";
-    s.output = FieldOutput::once;
-    s.file = FileType::int32;
-    return s;
+    return field_spec(set, body_fields::body, 1, 1, 1, "1", FieldOutput::once, false,
+                      "the body of each row (index into /bodies)", FileType::int32);
   }
   std::size_t set_lookup(const std::string& name) const {
     auto it = set_index_.find(name);
