@@ -32,12 +32,12 @@ def build(xmf):
     # one's grid, its cells drawn over its nodes (a chain's springs as lines, a mesh).
     grids = [g.get('Name') for g in ET.parse(xmf).getroot().find('Domain').findall('Grid')]
     for name in grids:
-        if name.endswith('.nodes') and name != 'rigid.nodes':
+        if name not in ('bodies', 'shapes', 'contacts', 'force_network', 'rigid'):
             mesh = Show(ExtractBlock(Input=reader, Selectors=['/Root/' + name]), view)
             mesh.Representation = 'Surface With Edges'
             mesh.LineWidth = 3
             mesh.PointSize = 6
-            ColorBy(mesh, None)
+            mesh.ColorArrayName = ['POINTS', '']
             mesh.AmbientColor = mesh.DiffuseColor = mesh.EdgeColor = [0.8, 0.2, 0.1]
     contacts = ExtractBlock(Input=reader, Selectors=['/Root/contacts'])
     contacts.UpdatePipeline(time)

@@ -27,6 +27,7 @@ XdmfLayout xdmf_layout(const State& st, const std::vector<SetTopology>& topologi
     const Field* x = nodes.find(node_fields::position);
     if (!x || x->spec().output != FieldOutput::frame) continue;  // nothing to place them
     XdmfSet s;
+    s.name = m.name;
     s.nodes = m.nodes;
     s.rows = nodes.rows();
     s.node_fields = frame_fields(nodes);
@@ -111,10 +112,10 @@ struct Writer {
   /// as points or its elements as cells, with every frame field of its sets.
   void model_sets(const std::vector<XdmfFrame>& frames) {
     for (const auto& set : layout.sets) {
-      os << "  <Grid Name=\"" << set.nodes << "\" GridType=\"Collection\" CollectionType=\"Temporal\">\n";
+      os << "  <Grid Name=\"" << set.name << "\" GridType=\"Collection\" CollectionType=\"Temporal\">\n";
       for (const auto& f : frames) {
         const std::string fp = frame_path(f.step);
-        grid_start(os, set.nodes.c_str(), f);
+        grid_start(os, set.name.c_str(), f);
         if (set.elements.empty()) {
           os << "      <Topology TopologyType=\"Polyvertex\" NumberOfElements=\"" << set.rows << "\" NodesPerElement=\"1\"/>\n";
         } else {

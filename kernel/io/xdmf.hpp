@@ -36,6 +36,7 @@ struct XdmfDisplay {
 /// the cells of its element set (/<elements>/cells) with the element fields on them; the
 /// force network joins the bodies' reference points /frames/N/bodies/position.
 struct XdmfSet {
+  std::string name;  ///< the grid's: the modelization's (ParaView's block selectors do not take dots)
   std::string nodes;
   std::size_t rows = 0;
   std::vector<std::pair<std::string, int>> node_fields;  ///< frame fields: name, components
