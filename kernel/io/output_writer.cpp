@@ -312,6 +312,12 @@ std::unique_ptr<OutputWriter> OutputWriter::append(const std::string& path, cons
     if (!src) throw InputError("", "cannot open the output file to continue it", path);
     if (h5::read_strings(src.get(), "/bodies/name", path) != state.names())
       throw InputError("/bodies/name", "the output file holds other bodies than the scene", path);
+    // Its frames are copied as they are: a moreau-output/1 file's would lack the sets'
+    // groups of the frames written after them, in a file that says moreau-output/2.
+    if (h5::read_attribute_string(src.get(), "format", path, "/") != output_format)
+      throw InputError("/", std::string("a file of an earlier format cannot be continued in place: restart from it into a "
+                                        "new file (--out NEW.h5), which is ") + output_format,
+                       path);
     std::error_code ec;
     fs::remove(path + ".part", ec);
     fs::create_directory(impl->folder, ec);

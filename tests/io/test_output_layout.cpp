@@ -136,6 +136,10 @@ TEST(OutputLayout, RestartsFromAVersion1File) {
     ASSERT_FALSE(a.empty()) << p;
     for (std::size_t i = 0; i < a.size(); ++i) EXPECT_EQ(a[i], b[i]) << p << "[" << i << "]";
   }
+  // Continuing it in place would mix layouts: refused, with the way out.
+  r = run_moreau({"run", "scene.json", "--restart", "v1.h5", "--out", "v1.h5", "--quiet"}, dir);
+  EXPECT_EQ(r.code, 2);
+  EXPECT_NE(r.err.find("cannot be continued in place: restart from it into a new file"), std::string::npos) << r.err;
   // The v1 file's frames read as this moreau writes them, where both have them.
   for (const char* p : {"position", "contacts/key", "contacts/normal_force"}) {
     const auto a = moreau_test::read_doubles((dir / "full.h5").string(), std::string("/frames/00000150/") + p);
