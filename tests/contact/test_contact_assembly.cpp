@@ -302,3 +302,34 @@ TEST(ContactAssembly, RigidContactsGiveTheFactoredForm) {
     EXPECT_LT((Eigen::MatrixXd(P.W) - W_ref).cwiseAbs().maxCoeff(), 1e-12 * W_ref.cwiseAbs().maxCoeff());
   }
 }
+
+TEST(ContactAssembly, BallOnGroundDelassusByHand) {
+  // The ball (mass m, isotropic inertia I) on the fixed floor, the point a distance R below
+  // its centre at the detection configuration: W_nn = 1/m (the lever arm is along n), each
+  // tangent 1/m + R²/I (rolling couples in), no coupling between the directions.
+  for (int d : {2, 3}) {
+    Mixed s(d);
+    const double R = 0.25;
+    const auto x = s.st.field(rigid::nodes, rigid::detection_position).row(0);
+    ContactSides c;
+    c.body = {0, 1};
+    c.model = {0, 0};
+    c.node = {0, 1};
+    c.point = {x[0], x[1] - R, d == 3 ? x[2] : 0.0};
+    const double n[3] = {0, 1, 0};
+    if (d == 2) {
+      for (const auto& row : local_frame_2d(n)) c.frame.insert(c.frame.end(), row.begin(), row.end());
+    } else {
+      for (const auto& row : local_frame_3d(n)) c.frame.insert(c.frame.end(), row.begin(), row.end());
+    }
+    ContactAssembly as;
+    LocalProblem P;
+    as.build(s.st, s.models, c, true, P);
+    const Eigen::MatrixXd W(P.W);
+    EXPECT_NEAR(W(0, 0), 1 / s.m, 1e-14) << d << "D";
+    for (int t = 1; t < d; ++t) EXPECT_NEAR(W(t, t), 1 / s.m + R * R / s.I, 1e-13) << d << "D";
+    for (int i = 0; i < d; ++i)
+      for (int j = 0; j < d; ++j)
+        if (i != j) EXPECT_NEAR(W(i, j), 0.0, 1e-14) << d << "D " << i << j;
+  }
+}
