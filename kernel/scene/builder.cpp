@@ -226,10 +226,20 @@ class SceneChecker {
         m.integrator = reg.create<Integrator>(name, Params(json::object(), use.integrator_pointer), ctx, use.integrator_pointer);
         m.integrator->prepare(w->state, *m.modelization);
       }
-      if (w->contacts)
+      if (w->contacts) {
         for (const auto& m : w->models)
           w->contacts->models.push_back(ContactModel{m.modelization.get(), m.integrator.get(), m.modelization->node_set(),
                                                      m.modelization->node_dofs(dim_)});
+        // A contactor's node must say where it is at detection and take the impulses back.
+        for (const auto& c : w->contacts->contactors) {
+          const ModelInfo& m = w->state.models()[c.model];
+          for (const char* f : {node_fields::detection_position, node_fields::reaction})
+            if (!w->state.has(m.nodes, f))
+              throw InputError(bodies_[c.body].model.pointer + "/contactors",
+                               "modelization \"" + m.name + "\" has no node field '" + f +
+                                   "' (sdk/README.md, Writing a modelization): its bodies cannot carry contactors that interact");
+        }
+      }
       ctx.state = &w->state;
       for (const auto& f : forces_) w->forces.push_back(reg.create<Force>(f.name, f.params, ctx, f.pointer));
       for (const auto& h : hooks_) w->hooks.push_back(reg.create<Hook>(h.name, h.params, ctx, h.pointer));
