@@ -1,0 +1,144 @@
+#include "sparse_cholesky.hpp"
+
+#include <Eigen/SparseCholesky>
+#include <stdexcept>
+#include <string>
+
+#ifdef MOREAU_FEM_CHOLMOD
+#include <Eigen/CholmodSupport>
+#endif
+
+namespace moreau::fem {
+namespace {
+
+using Sparse = Eigen::SparseMatrix<double>;
+
+struct Solver {
+  virtual ~Solver() = default;
+  virtual void analyze(const Sparse& A) = 0;
+  virtual void factor(const Sparse& A) = 0;
+  virtual Eigen::ComputationInfo info() const = 0;
+  virtual Eigen::VectorXd solve(const Eigen::VectorXd& b) const = 0;
+  virtual Eigen::MatrixXd solve(const Eigen::MatrixXd& B) const = 0;
+};
+
+template <class S>
+struct SolverOf final : Solver {
+  S s;
+  void analyze(const Sparse& A) override { s.analyzePattern(A); }
+  void factor(const Sparse& A) override { s.factorize(A); }
+  Eigen::ComputationInfo info() const override { return s.info(); }
+  Eigen::VectorXd solve(const Eigen::VectorXd& b) const override { return s.solve(b); }
+  Eigen::MatrixXd solve(const Eigen::MatrixXd& B) const override { return s.solve(B); }
+};
+
+std::unique_ptr<Solver> make_solver(CholeskyBackend backend) {
+  switch (backend) {
+    case CholeskyBackend::eigen_ldlt:
+      return std::make_unique<SolverOf<Eigen::SimplicialLDLT<Sparse, Eigen::Lower, Eigen::AMDOrdering<int>>>>();
+    case CholeskyBackend::eigen_llt:
+      return std::make_unique<SolverOf<Eigen::SimplicialLLT<Sparse, Eigen::Lower, Eigen::AMDOrdering<int>>>>();
+#ifdef MOREAU_FEM_CHOLMOD
+    case CholeskyBackend::cholmod_supernodal:
+      return std::make_unique<SolverOf<Eigen::CholmodSupernodalLLT<Sparse, Eigen::Lower>>>();
+    case CholeskyBackend::cholmod_simplicial:
+      return std::make_unique<SolverOf<Eigen::CholmodSimplicialLDLT<Sparse, Eigen::Lower>>>();
+#else
+    case CholeskyBackend::cholmod_supernodal:
+    case CholeskyBackend::cholmod_simplicial:
+#endif
+    case CholeskyBackend::automatic:
+      break;
+  }
+  throw std::runtime_error("sparse Cholesky backend '" + std::string(backend_name(backend)) +
+                           "' is not available in this build (CHOLMOD needs SuiteSparse: libsuitesparse-dev)");
+}
+
+}  // namespace
+
+std::string_view backend_name(CholeskyBackend backend) {
+  switch (backend) {
+    case CholeskyBackend::automatic: return "automatic";
+    case CholeskyBackend::eigen_ldlt: return "eigen-ldlt";
+    case CholeskyBackend::eigen_llt: return "eigen-llt";
+    case CholeskyBackend::cholmod_supernodal: return "cholmod-supernodal";
+    case CholeskyBackend::cholmod_simplicial: return "cholmod-simplicial";
+  }
+  return "?";
+}
+
+bool backend_available(CholeskyBackend backend) {
+#ifdef MOREAU_FEM_CHOLMOD
+  (void)backend;
+  return true;
+#else
+  return backend != CholeskyBackend::cholmod_supernodal && backend != CholeskyBackend::cholmod_simplicial;
+#endif
+}
+
+CholeskyBackend automatic_backend(Eigen::Index n, Eigen::Index nnz, int dim) {
+  (void)n, (void)nnz, (void)dim;
+  return CholeskyBackend::eigen_ldlt;  // placeholder until the benchmark decides
+}
+
+struct SparseCholesky::Impl {
+  CholeskyBackend requested, resolved = CholeskyBackend::automatic;
+  int dim;
+  Eigen::Index rows = 0;
+  std::unique_ptr<Solver> solver;
+
+  void check(const char* step) const {
+    const Eigen::ComputationInfo info = solver->info();
+    if (info == Eigen::Success) return;
+    throw std::runtime_error(std::string("sparse Cholesky (") + std::string(backend_name(resolved)) + ") " + step +
+                             " failed: " +
+                             (info == Eigen::NumericalIssue
+                                  ? "the matrix is not positive definite (a body free to move as a rigid body with "
+                                    "no mass, or a non-positive mass or stiffness)"
+                                  : "out of memory or invalid input"));
+  }
+};
+
+SparseCholesky::SparseCholesky(CholeskyBackend backend, int dim) : impl_(std::make_unique<Impl>()) {
+  impl_->requested = backend;
+  impl_->dim = dim;
+  if (backend != CholeskyBackend::automatic && !backend_available(backend)) make_solver(backend);  // throws
+}
+
+SparseCholesky::~SparseCholesky() = default;
+SparseCholesky::SparseCholesky(SparseCholesky&&) noexcept = default;
+SparseCholesky& SparseCholesky::operator=(SparseCholesky&&) noexcept = default;
+
+void SparseCholesky::factorize(const Eigen::SparseMatrix<double>& A) {
+  if (A.rows() != A.cols()) throw std::invalid_argument("sparse Cholesky: the matrix is not square");
+  Impl& m = *impl_;
+  m.resolved = m.requested == CholeskyBackend::automatic ? automatic_backend(A.rows(), A.nonZeros(), m.dim) : m.requested;
+  m.solver = make_solver(m.resolved);
+  m.rows = A.rows();
+  m.solver->analyze(A);
+  m.check("analysis");
+  m.solver->factor(A);
+  m.check("factorisation");
+}
+
+void SparseCholesky::refactorize(const Eigen::SparseMatrix<double>& A) {
+  Impl& m = *impl_;
+  if (!m.solver || A.rows() != m.rows) return factorize(A);
+  m.solver->factor(A);
+  m.check("factorisation");
+}
+
+Eigen::VectorXd SparseCholesky::solve(const Eigen::VectorXd& b) const {
+  if (!impl_->solver) throw std::logic_error("sparse Cholesky: solve before factorize");
+  return impl_->solver->solve(b);
+}
+
+Eigen::MatrixXd SparseCholesky::solve(const Eigen::MatrixXd& B) const {
+  if (!impl_->solver) throw std::logic_error("sparse Cholesky: solve before factorize");
+  return impl_->solver->solve(B);
+}
+
+CholeskyBackend SparseCholesky::backend() const { return impl_->solver ? impl_->resolved : impl_->requested; }
+Eigen::Index SparseCholesky::rows() const { return impl_->rows; }
+
+}  // namespace moreau::fem
