@@ -1,5 +1,6 @@
 #include "elasticity.hpp"
 
+#include <Eigen/Geometry>
 #include <algorithm>
 #include <cmath>
 

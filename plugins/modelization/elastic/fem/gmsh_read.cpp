@@ -443,9 +443,9 @@ RawMesh read_raw(Input& in) {
   bool format = false;
   while (!in.at_end()) {
     const std::string_view t = in.token("a section");
+    if (!format && t != "$MeshFormat") in.fail_found("not a Gmsh mesh file: expected $MeshFormat first", t);
     if (t.empty() || t[0] != '$') in.fail_found("expected a section such as $Nodes or $Elements", t);
     const std::string name(t.substr(1));
-    if (!format && name != "MeshFormat") in.fail_found("not a Gmsh mesh file: expected $MeshFormat first", t);
     if (name == "MeshFormat") {
       if (format) in.fail("a second $MeshFormat section");
       read_format(in, raw);
@@ -478,6 +478,12 @@ RawMesh read_raw(Input& in) {
 }
 
 // ---- From the file's contents to a Mesh -------------------------------------------------
+
+std::string number(double v) {
+  std::ostringstream s;
+  s << v;
+  return s.str();
+}
 
 std::string where(const std::string& file, long line) { return line > 0 ? file + ":" + std::to_string(line) : file; }
 
@@ -537,10 +543,19 @@ Mesh build(const RawMesh& raw, const std::string& file) {
     return it->second;
   };
 
-  // Elements of the mesh dimension (a 2.2 file repeats an element once per physical group).
+  // Elements of the mesh dimension. A 2.2 file repeats an element once per physical group
+  // (under a new number): elements with the same nodes are one element, in every group.
   std::vector<int> compact(raw.node_tags.size(), -1);  // $Nodes position → mesh node
   std::vector<int> order;                              // mesh node → $Nodes position
-  std::unordered_map<std::int64_t, int> element_of_tag;
+  using NodeKey = std::array<int, 8>;
+  struct KeyHash {
+    std::size_t operator()(const NodeKey& k) const {
+      std::size_t h = 0;
+      for (int v : k) h = h * 0x9E3779B97F4A7C15ull + static_cast<std::size_t>(v);
+      return h;
+    }
+  };
+  std::unordered_map<NodeKey, int, KeyHash> element_of_nodes;
   std::vector<int> mesh_element(raw.elements.size(), -1);
   std::vector<int> entity;
   std::vector<int> nodes(128);  // the largest Gmsh element has 125 nodes
@@ -554,14 +569,16 @@ Mesh build(const RawMesh& raw, const std::string& file) {
                           std::to_string(dim) + "D types: " + supported_types(dim),
                       file, e.line, e.tag);
     const int n = e.type->nodes;
-    for (int k = 0; k < n; ++k) nodes[k] = raw_node(e, k);
-    if (const auto it = element_of_tag.find(e.tag); it != element_of_tag.end()) {
-      const auto prev = mesh.elements[it->second];
-      bool same = static_cast<int>(prev.size()) == n;
-      for (int k = 0; same && k < n; ++k) same = order[prev[k]] == nodes[k];
-      if (!same)
-        throw MeshError(where(file, e.line) + ": element " + std::to_string(e.tag) + " is defined twice with different nodes",
-                        file, e.line, e.tag);
+    NodeKey key;
+    key.fill(-1);
+    for (int k = 0; k < n; ++k) {  // the key: the node positions, sorted (insertion, n ≤ 8)
+      nodes[k] = raw_node(e, k);
+      int j = k;
+      for (; j > 0 && key[j - 1] > nodes[k]; --j) key[j] = key[j - 1];
+      key[j] = nodes[k];
+    }
+    const auto [it, inserted] = element_of_nodes.emplace(key, mesh.elements.size());
+    if (!inserted) {
       mesh_element[r] = it->second;
       continue;
     }
@@ -574,7 +591,6 @@ Mesh build(const RawMesh& raw, const std::string& file) {
       nodes[k] = c;
     }
     mesh_element[r] = mesh.elements.size();
-    element_of_tag.emplace(e.tag, mesh.elements.size());
     mesh.elements.add(type, std::span<const int>(nodes.data(), n));
     mesh.element_number.push_back(e.tag);
     mesh.element_line.push_back(e.line);
@@ -601,8 +617,8 @@ Mesh build(const RawMesh& raw, const std::string& file) {
       if (std::abs(raw.coords[3 * order[i] + 2] - z0) > 1e-9 * extent) {
         const long line = raw.node_line[order[i]];
         throw MeshError(where(file, line) + ": a 2D mesh must lie in a plane z = constant, but node " +
-                            std::to_string(raw.node_tags[order[i]]) + " has z = " + std::to_string(raw.coords[3 * order[i] + 2]) +
-                            " and node " + std::to_string(raw.node_tags[order[0]]) + " z = " + std::to_string(z0),
+                            std::to_string(raw.node_tags[order[i]]) + " has z = " + number(raw.coords[3 * order[i] + 2]) +
+                            " and node " + std::to_string(raw.node_tags[order[0]]) + " z = " + number(z0),
                         file, line);
       }
   }

@@ -1,5 +1,6 @@
 #include "mesh.hpp"
 
+#include <Eigen/Geometry>
 #include <algorithm>
 #include <array>
 #include <sstream>

@@ -25,7 +25,7 @@ Modes lowest_modes(const SparseMatrix& K, const SparseMatrix& M, int k, double t
   Modes modes;
   Eigen::VectorXd previous = Eigen::VectorXd::Constant(k, -1);
   for (int it = 1; it <= max_iterations; ++it) {
-    const Eigen::MatrixXd Y = factor.solve(Eigen::MatrixXd(M * X));
+    const Eigen::MatrixXd Y = factor.solve_columns(M * X);
     const Eigen::MatrixXd Kr = Y.transpose() * (K * Y), Mr = Y.transpose() * (M * Y);
     Eigen::GeneralizedSelfAdjointEigenSolver<Eigen::MatrixXd> reduced(0.5 * (Kr + Kr.transpose()),
                                                                       0.5 * (Mr + Mr.transpose()));

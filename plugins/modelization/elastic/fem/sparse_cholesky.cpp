@@ -18,6 +18,8 @@ struct Solver {
   virtual void analyze(const Sparse& A) = 0;
   virtual void factor(const Sparse& A) = 0;
   virtual Eigen::ComputationInfo info() const = 0;
+  /// An LDLᵀ succeeds on indefinite matrices; the caller needs positive definite ones.
+  virtual bool positive_pivots() const { return true; }
   virtual Eigen::VectorXd solve(const Eigen::VectorXd& b) const = 0;
   virtual Eigen::MatrixXd solve(const Eigen::MatrixXd& B) const = 0;
 };
@@ -25,12 +27,36 @@ struct Solver {
 template <class S>
 struct SolverOf final : Solver {
   S s;
+  SolverOf() {
+    // CHOLMOD prints its own warnings on stderr; the caller gets an exception instead.
+    if constexpr (requires { s.cholmod().print; }) s.cholmod().print = 0;
+  }
   void analyze(const Sparse& A) override { s.analyzePattern(A); }
   void factor(const Sparse& A) override { s.factorize(A); }
   Eigen::ComputationInfo info() const override { return s.info(); }
   Eigen::VectorXd solve(const Eigen::VectorXd& b) const override { return s.solve(b); }
   Eigen::MatrixXd solve(const Eigen::MatrixXd& B) const override { return s.solve(B); }
+  bool positive_pivots() const override {
+    if constexpr (requires { s.vectorD(); }) return s.vectorD().size() == 0 || s.vectorD().minCoeff() > 0;
+    else if constexpr (requires { s.positive_pivots(); }) return s.positive_pivots();
+    else return true;
+  }
 };
+
+#ifdef MOREAU_FEM_CHOLMOD
+/// CHOLMOD's simplicial LDLᵀ with a look at D (the first entry of each column of its factor).
+struct CholmodLdlt : Eigen::CholmodSimplicialLDLT<Sparse, Eigen::Lower> {
+  bool positive_pivots() const {
+    const cholmod_factor* L = this->m_cholmodFactor;
+    if (!L || L->is_ll || L->is_super || L->xtype == CHOLMOD_PATTERN || !L->x) return true;
+    const int* p = static_cast<const int*>(L->p);
+    const double* x = static_cast<const double*>(L->x);
+    for (std::size_t j = 0; j < L->n; ++j)
+      if (!(x[p[j]] > 0)) return false;
+    return true;
+  }
+};
+#endif
 
 std::unique_ptr<Solver> make_solver(CholeskyBackend backend) {
   switch (backend) {
@@ -42,7 +68,7 @@ std::unique_ptr<Solver> make_solver(CholeskyBackend backend) {
     case CholeskyBackend::cholmod_supernodal:
       return std::make_unique<SolverOf<Eigen::CholmodSupernodalLLT<Sparse, Eigen::Lower>>>();
     case CholeskyBackend::cholmod_simplicial:
-      return std::make_unique<SolverOf<Eigen::CholmodSimplicialLDLT<Sparse, Eigen::Lower>>>();
+      return std::make_unique<SolverOf<CholmodLdlt>>();
 #else
     case CholeskyBackend::cholmod_supernodal:
     case CholeskyBackend::cholmod_simplicial:
@@ -87,8 +113,9 @@ struct SparseCholesky::Impl {
   Eigen::Index rows = 0;
   std::unique_ptr<Solver> solver;
 
-  void check(const char* step) const {
-    const Eigen::ComputationInfo info = solver->info();
+  void check(const char* step, bool factored) const {
+    Eigen::ComputationInfo info = solver->info();
+    if (factored && info == Eigen::Success && !solver->positive_pivots()) info = Eigen::NumericalIssue;
     if (info == Eigen::Success) return;
     throw std::runtime_error(std::string("sparse Cholesky (") + std::string(backend_name(resolved)) + ") " + step +
                              " failed: " +
@@ -116,16 +143,16 @@ void SparseCholesky::factorize(const Eigen::SparseMatrix<double>& A) {
   m.solver = make_solver(m.resolved);
   m.rows = A.rows();
   m.solver->analyze(A);
-  m.check("analysis");
+  m.check("analysis", false);
   m.solver->factor(A);
-  m.check("factorisation");
+  m.check("factorisation", true);
 }
 
 void SparseCholesky::refactorize(const Eigen::SparseMatrix<double>& A) {
   Impl& m = *impl_;
   if (!m.solver || A.rows() != m.rows) return factorize(A);
   m.solver->factor(A);
-  m.check("factorisation");
+  m.check("factorisation", true);
 }
 
 Eigen::VectorXd SparseCholesky::solve(const Eigen::VectorXd& b) const {
@@ -133,7 +160,7 @@ Eigen::VectorXd SparseCholesky::solve(const Eigen::VectorXd& b) const {
   return impl_->solver->solve(b);
 }
 
-Eigen::MatrixXd SparseCholesky::solve(const Eigen::MatrixXd& B) const {
+Eigen::MatrixXd SparseCholesky::solve_columns(const Eigen::MatrixXd& B) const {
   if (!impl_->solver) throw std::logic_error("sparse Cholesky: solve before factorize");
   return impl_->solver->solve(B);
 }

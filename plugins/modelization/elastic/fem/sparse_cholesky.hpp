@@ -35,7 +35,7 @@ class SparseCholesky {
 
   Eigen::VectorXd solve(const Eigen::VectorXd& b) const;
   /// Several right-hand sides at once (the columns of B).
-  Eigen::MatrixXd solve(const Eigen::MatrixXd& B) const;
+  Eigen::MatrixXd solve_columns(const Eigen::MatrixXd& B) const;
 
   CholeskyBackend backend() const;  ///< the one in use (resolved after factorize)
   Eigen::Index rows() const;
