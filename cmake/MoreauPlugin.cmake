@@ -30,3 +30,19 @@ function(moreau_add_plugin KIND NAME)
     install(TARGETS ${target} LIBRARY DESTINATION ${MOREAU_PLUGIN_INSTALL_DIR})
   endif()
 endfunction()
+
+# moreau_add_static_library(NAME SOURCES file... [LIBRARIES lib...])
+#
+# A static library of code shared by plugins (and reached by tests), compiled
+# position-independent with the plugins' hidden visibility, so it can be linked into them.
+function(moreau_add_static_library NAME)
+  cmake_parse_arguments(ARG "" "" "SOURCES;LIBRARIES" ${ARGN})
+  add_library(${NAME} STATIC ${ARG_SOURCES})
+  set_target_properties(${NAME} PROPERTIES
+    POSITION_INDEPENDENT_CODE ON CXX_VISIBILITY_PRESET hidden VISIBILITY_INLINES_HIDDEN ON)
+  target_include_directories(${NAME} PUBLIC ${CMAKE_CURRENT_SOURCE_DIR})
+  target_link_libraries(${NAME} PUBLIC ${ARG_LIBRARIES})
+  if(CMAKE_CXX_COMPILER_ID STREQUAL "GNU")
+    target_compile_options(${NAME} PRIVATE -fno-gnu-unique)
+  endif()
+endfunction()

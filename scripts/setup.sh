@@ -19,6 +19,7 @@ default_scene=configs/default.json
 # Debian packages (DESIGN §4). Only the missing ones are installed.
 packages=(cmake make g++ pkg-config
   libeigen3-dev libboost-dev libboost-filesystem-dev nlohmann-json3-dev libhdf5-dev libfcl-dev libcli11-dev
+  libsuitesparse-dev
   libgtest-dev libgmock-dev libbenchmark-dev
   hdf5-tools python3 python3-h5py python3-numpy python3-matplotlib)
 missing=()

@@ -56,5 +56,19 @@ TEST(FemCheck, NonFiniteCoordinate) {
   EXPECT_EQ(check_error(m), "node 3 of rectangle has a non-finite coordinate");
 }
 
+TEST(FemCheck, StructuralFaults) {
+  Mesh m = rectangle_mesh({0, 0}, {1, 1}, 1, ElementType::Q4);
+  m.x.conservativeResize(2, 5);
+  m.x.col(4) << 3, 3;
+  EXPECT_EQ(check_error(m), "node 5 of rectangle belongs to no element (it would be free to move with no stiffness)");
+  Mesh t = test::one_element(ElementType::T4);
+  t.dim = 2;
+  t.x.conservativeResize(2, 4);
+  EXPECT_EQ(check_error(t), "element 1 of the one-element mesh is a T4 with 4 nodes in a 2D mesh");
+  Mesh q = test::one_element(ElementType::Q4);
+  q.elements.nodes[3] = 7;
+  EXPECT_EQ(check_error(q), "element 1 of the one-element mesh refers to node index 7, outside [0, 4)");
+}
+
 }  // namespace
 }  // namespace moreau::fem

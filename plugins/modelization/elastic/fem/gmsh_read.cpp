@@ -10,6 +10,7 @@
 #include <map>
 #include <set>
 #include <sstream>
+#include <type_traits>
 #include <unordered_map>
 
 #include "element_geometry.hpp"
@@ -73,9 +74,18 @@ class Input {
     return pos_ >= s_.size();
   }
 
-  std::string_view token(const std::string& what) {
+  // `what` describes the expected value for a message: a string, or a function making one
+  // (so a large file does not build a message per number it reads).
+  template <class What>
+  static std::string text(const What& what) {
+    if constexpr (std::is_invocable_v<What>) return what();
+    else return std::string(what);
+  }
+
+  template <class What>
+  std::string_view token(const What& what) {
     skip_space();
-    if (pos_ >= s_.size()) fail("expected " + what + ", but the file ends");
+    if (pos_ >= s_.size()) fail("expected " + text(what) + ", but the file ends");
     token_pos_ = pos_;
     token_line_ = line_;
     const std::size_t start = pos_;
@@ -83,25 +93,28 @@ class Input {
     return s_.substr(start, pos_ - start);
   }
 
-  long long integer(const std::string& what) {
+  template <class What>
+  long long integer(const What& what) {
     const std::string_view t = token(what);
     long long v = 0;
     const auto [end, ec] = std::from_chars(t.data(), t.data() + t.size(), v);
-    if (ec != std::errc() || end != t.data() + t.size()) fail_found("expected " + what + " (an integer)", t);
+    if (ec != std::errc() || end != t.data() + t.size()) fail_found("expected " + text(what) + " (an integer)", t);
     return v;
   }
 
-  long long count(const std::string& what) {
+  template <class What>
+  long long count(const What& what) {
     const long long v = integer(what);
-    if (v < 0 || v > 2'000'000'000) fail("expected " + what + " (a count ≥ 0), found " + std::to_string(v));
+    if (v < 0 || v > 2'000'000'000) fail("expected " + text(what) + " (a count ≥ 0), found " + std::to_string(v));
     return v;
   }
 
-  double real(const std::string& what) {
+  template <class What>
+  double real(const What& what) {
     const std::string_view t = token(what);
     double v = 0;
     const auto [end, ec] = std::from_chars(t.data(), t.data() + t.size(), v);
-    if (ec != std::errc() || end != t.data() + t.size()) fail_found("expected " + what + " (a number)", t);
+    if (ec != std::errc() || end != t.data() + t.size()) fail_found("expected " + text(what) + " (a number)", t);
     return v;
   }
 
@@ -131,28 +144,43 @@ class Input {
     ++pos_;
   }
 
-  template <class T>
-  T raw(const std::string& what) {
+  template <class T, class What>
+  T raw(const What& what) {
     token_pos_ = pos_;
-    if (s_.size() - pos_ < sizeof(T)) fail("expected " + what + " (" + std::to_string(sizeof(T)) + " bytes), but the file ends");
+    if (s_.size() - pos_ < sizeof(T))
+      fail("expected " + text(what) + " (" + std::to_string(sizeof(T)) + " bytes), but the file ends");
     T v;
     std::memcpy(&v, s_.data() + pos_, sizeof(T));
     pos_ += sizeof(T);
     if (swap) v = byteswap(v);
     return v;
   }
-  long long raw_int(const std::string& what) { return raw<std::int32_t>(what); }
-  long long raw_size(const std::string& what) {
+  template <class What>
+  long long raw_int(const What& what) { return raw<std::int32_t>(what); }
+  template <class What>
+  long long raw_size(const What& what) {
     const long long v = size_t_bytes == 8 ? static_cast<long long>(raw<std::uint64_t>(what)) : raw<std::uint32_t>(what);
-    if (v < 0 || v > 2'000'000'000LL * 64) fail("expected " + what + ", found the implausible value " + std::to_string(v));
+    if (v < 0 || v > 2'000'000'000LL * 64) fail("expected " + text(what) + ", found the implausible value " + std::to_string(v));
     return v;
   }
-  long long raw_count(const std::string& what) {
+  template <class What>
+  long long raw_count(const What& what) {
     const long long v = raw_size(what);
-    if (v > 2'000'000'000) fail("expected " + what + " (a count), found " + std::to_string(v));
+    if (v > 2'000'000'000) fail("expected " + text(what) + " (a count), found " + std::to_string(v));
     return v;
   }
-  double raw_real(const std::string& what) { return raw<double>(what); }
+  template <class What>
+  double raw_real(const What& what) { return raw<double>(what); }
+
+  // Values that are text in an ASCII file and raw in a binary one (4.1 sections).
+  template <class What>
+  long long any_count(const What& what) { return binary ? raw_count(what) : count(what); }  // size_t
+  template <class What>
+  long long any_size(const What& what) { return binary ? raw_size(what) : count(what); }  // size_t tag
+  template <class What>
+  long long any_int(const What& what) { return binary ? raw_int(what) : integer(what); }  // int
+  template <class What>
+  double any_real(const What& what) { return binary ? raw_real(what) : real(what); }
 
   /// Skips to the line "$End<name>" (an unknown section).
   void skip_section(const std::string& name) {
@@ -269,21 +297,18 @@ void read_physical_names(Input& in, RawMesh& raw) {
 void read_entities(Input& in, RawMesh& raw) {
   long long counts[4];
   if (in.binary) in.start_binary();
-  for (int d = 0; d < 4; ++d) {
-    static const char* what[4] = {"the number of points", "the number of curves", "the number of surfaces", "the number of volumes"};
-    counts[d] = in.binary ? in.raw_count(what[d]) : in.count(what[d]);
-  }
+  static const char* what[4] = {"the number of points", "the number of curves", "the number of surfaces", "the number of volumes"};
+  for (int d = 0; d < 4; ++d) counts[d] = in.any_count(what[d]);
   for (int d = 0; d < 4; ++d)
     for (long long i = 0; i < counts[d]; ++i) {
-      const int tag = static_cast<int>(in.binary ? in.raw_int("an entity tag") : in.integer("an entity tag"));
-      for (int k = 0; k < (d == 0 ? 3 : 6); ++k) in.binary ? in.raw_real("an entity coordinate") : in.real("an entity coordinate");
-      const long long np = in.binary ? in.raw_count("the number of physical tags") : in.count("the number of physical tags");
+      const int tag = static_cast<int>(in.any_int("an entity tag"));
+      for (int k = 0; k < (d == 0 ? 3 : 6); ++k) in.any_real("an entity coordinate");
+      const long long np = in.any_count("the number of physical tags");
       std::vector<int>& phys = raw.entity_physicals[{d, tag}];
-      for (long long p = 0; p < np; ++p)
-        phys.push_back(static_cast<int>(in.binary ? in.raw_int("a physical tag") : in.integer("a physical tag")));
+      for (long long p = 0; p < np; ++p) phys.push_back(static_cast<int>(in.any_int("a physical tag")));
       if (d > 0) {
-        const long long nb = in.binary ? in.raw_count("the number of bounding entities") : in.count("the number of bounding entities");
-        for (long long b = 0; b < nb; ++b) in.binary ? in.raw_int("a bounding entity tag") : in.integer("a bounding entity tag");
+        const long long nb = in.any_count("the number of bounding entities");
+        for (long long b = 0; b < nb; ++b) in.any_int("a bounding entity tag");
       }
     }
   in.keyword("$EndEntities");
@@ -308,44 +333,48 @@ void read_nodes_22(Input& in, RawMesh& raw) {
     } else {
       const long long tag = in.integer("a node tag");
       const long line = in.line();
-      const double x = in.real("the x coordinate of node " + std::to_string(tag));
-      const double y = in.real("the y coordinate of node " + std::to_string(tag));
-      const double z = in.real("the z coordinate of node " + std::to_string(tag));
+      const double x = in.real([&] { return "the x coordinate of node " + std::to_string(tag); });
+      const double y = in.real([&] { return "the y coordinate of node " + std::to_string(tag); });
+      const double z = in.real([&] { return "the z coordinate of node " + std::to_string(tag); });
       add_node(raw, tag, x, y, z, line);
     }
   }
   in.keyword("$EndNodes");
 }
 
-void read_nodes_41(Input& in, RawMesh& raw) {
+/// The header of a 4.1 $Nodes or $Elements section: numbers of blocks and of items
+/// (the smallest and largest tags that follow are not needed).
+std::pair<long long, long long> read_block_header(Input& in, const std::string& item) {
   if (in.binary) in.start_binary();
-  const auto size = [&](const char* what) { return in.binary ? in.raw_count(what) : in.count(what); };
-  const auto integer = [&](const char* what) { return in.binary ? in.raw_int(what) : in.integer(what); };
-  const long long blocks = size("the number of node blocks");
-  const long long n = size("the number of nodes");
-  size("the smallest node tag");
-  size("the largest node tag");
+  const long long blocks = in.any_count("the number of " + item + " blocks");
+  const long long n = in.any_count("the number of " + item + "s");
+  in.any_size("the smallest " + item + " tag");
+  in.any_size("the largest " + item + " tag");
+  return {blocks, n};
+}
+
+void read_nodes_41(Input& in, RawMesh& raw) {
+  const auto [blocks, n] = read_block_header(in, "node");
   raw.node_tags.reserve(n);
   raw.coords.reserve(3 * n);
   std::vector<std::int64_t> tags;
   for (long long b = 0; b < blocks; ++b) {
-    const long long dim = integer("the entity dimension of a node block");
-    integer("the entity tag of a node block");
-    const long long parametric = integer("the parametric flag of a node block (0 or 1)");
+    const long long dim = in.any_int("the entity dimension of a node block");
+    in.any_int("the entity tag of a node block");
+    const long long parametric = in.any_int("the parametric flag of a node block (0 or 1)");
     if (parametric != 0 && parametric != 1) in.fail("expected the parametric flag 0 or 1, found " + std::to_string(parametric));
-    const long long count = size("the number of nodes in the block");
+    const long long count = in.any_count("the number of nodes in the block");
     tags.resize(count);
-    for (auto& t : tags) t = in.binary ? in.raw_size("a node tag") : in.count("a node tag");
+    for (auto& t : tags) t = in.any_size("a node tag");
     const int extra = parametric ? static_cast<int>(dim) : 0;
     for (long long i = 0; i < count; ++i) {
       double c[3];
       long line = 0;
       for (int k = 0; k < 3; ++k) {
-        const std::string what = std::string("the ") + "xyz"[k] + " coordinate of node " + std::to_string(tags[i]);
-        c[k] = in.binary ? in.raw_real(what) : in.real(what);
+        c[k] = in.any_real([&] { return std::string("the ") + "xyz"[k] + " coordinate of node " + std::to_string(tags[i]); });
         if (k == 0) line = in.line();
       }
-      for (int k = 0; k < extra; ++k) in.binary ? in.raw_real("a parametric coordinate") : in.real("a parametric coordinate");
+      for (int k = 0; k < extra; ++k) in.any_real("a parametric coordinate");
       add_node(raw, tags[i], c[0], c[1], c[2], line);
     }
   }
@@ -389,18 +418,19 @@ void read_elements_22(Input& in, RawMesh& raw) {
     for (long long i = 0; i < n; ++i) {
       const long long tag = in.integer("an element tag");
       const long line = in.line();
-      const GmshType* type = element_type(in, in.integer("the type of element " + std::to_string(tag)));
-      const long long ntags = in.count("the number of tags of element " + std::to_string(tag));
+      const GmshType* type = element_type(in, in.integer([&] { return "the type of element " + std::to_string(tag); }));
+      const long long ntags = in.count([&] { return "the number of tags of element " + std::to_string(tag); });
       RawElement e{type, tag, 0, line, raw.element_nodes.size()};
       int physical = 0;
       for (long long t = 0; t < ntags; ++t) {
-        const int v = static_cast<int>(in.integer("a tag of element " + std::to_string(tag)));
+        const int v = static_cast<int>(in.integer([&] { return "a tag of element " + std::to_string(tag); }));
         if (t == 0) physical = v;
         if (t == 1) e.entity = v;
       }
       for (int k = 0; k < type->nodes; ++k)
-        raw.element_nodes.push_back(in.integer("node " + std::to_string(k + 1) + " of element " + std::to_string(tag) +
-                                               " (a " + type->name + ")"));
+        raw.element_nodes.push_back(in.integer([&] {
+          return "node " + std::to_string(k + 1) + " of element " + std::to_string(tag) + " (a " + type->name + ")";
+        }));
       if (physical != 0) raw.membership.emplace_back(raw.elements.size(), physical);
       raw.elements.push_back(e);
     }
@@ -409,27 +439,21 @@ void read_elements_22(Input& in, RawMesh& raw) {
 }
 
 void read_elements_41(Input& in, RawMesh& raw) {
-  if (in.binary) in.start_binary();
-  const auto size = [&](const char* what) { return in.binary ? in.raw_count(what) : in.count(what); };
-  const auto integer = [&](const char* what) { return in.binary ? in.raw_int(what) : in.integer(what); };
-  const long long blocks = size("the number of element blocks");
-  const long long n = size("the number of elements");
-  size("the smallest element tag");
-  size("the largest element tag");
+  const auto [blocks, n] = read_block_header(in, "element");
   raw.elements.reserve(n);
   for (long long b = 0; b < blocks; ++b) {
-    const long long dim = integer("the entity dimension of an element block");
-    const long long entity = integer("the entity tag of an element block");
-    const GmshType* type = element_type(in, integer("the element type of an element block"));
+    const long long dim = in.any_int("the entity dimension of an element block");
+    const long long entity = in.any_int("the entity tag of an element block");
+    const GmshType* type = element_type(in, in.any_int("the element type of an element block"));
     if (type->dim != dim) in.fail("element block of dimension " + std::to_string(dim) + " holds " + type->name + " elements");
-    const long long count = size("the number of elements in the block");
+    const long long count = in.any_count("the number of elements in the block");
     for (long long i = 0; i < count; ++i) {
-      const long long tag = in.binary ? in.raw_size("an element tag") : in.count("an element tag");
+      const long long tag = in.any_size("an element tag");
       RawElement e{type, tag, static_cast<int>(entity), in.line(), raw.element_nodes.size()};
       for (int k = 0; k < type->nodes; ++k)
-        raw.element_nodes.push_back(in.binary ? in.raw_size("an element node")
-                                              : in.count("node " + std::to_string(k + 1) + " of element " +
-                                                         std::to_string(tag) + " (a " + type->name + ")"));
+        raw.element_nodes.push_back(in.any_size([&] {
+          return "node " + std::to_string(k + 1) + " of element " + std::to_string(tag) + " (a " + type->name + ")";
+        }));
       raw.elements.push_back(e);
     }
   }

@@ -2,6 +2,7 @@
 
 #include <cmath>
 #include <sstream>
+#include <vector>
 
 #include "element_geometry.hpp"
 
@@ -24,6 +25,32 @@ void check_mesh(const Mesh& mesh) {
       throw MeshError("node " + std::to_string(mesh.node_label(n)) + " of " +
                           (mesh.source.empty() ? std::string("the mesh") : mesh.source) +
                           " has a non-finite coordinate",
+                      file);
+  if (mesh.dim != 2 && mesh.dim != 3)
+    throw MeshError((mesh.source.empty() ? std::string("mesh") : mesh.source) + ": dimension " + std::to_string(mesh.dim) +
+                        " (expected 2 or 3)",
+                    file);
+  std::vector<char> used(mesh.node_count(), 0);
+  for (int e = 0; e < mesh.element_count(); ++e) {
+    const ElementInfo& info = element_info(mesh.elements.type[e]);
+    const auto cell = mesh.elements[e];
+    if (info.dim != mesh.dim || static_cast<int>(cell.size()) != info.nodes)
+      throw MeshError(mesh.describe_element(e) + " is a " + std::string(info.name) + " with " +
+                          std::to_string(cell.size()) + " nodes in a " + std::to_string(mesh.dim) + "D mesh",
+                      file, mesh.element_line.empty() ? 0 : mesh.element_line[e], mesh.element_label(e));
+    for (int n : cell) {
+      if (n < 0 || n >= mesh.node_count())
+        throw MeshError(mesh.describe_element(e) + " refers to node index " + std::to_string(n) + ", outside [0, " +
+                            std::to_string(mesh.node_count()) + ")",
+                        file, mesh.element_line.empty() ? 0 : mesh.element_line[e], mesh.element_label(e));
+      used[n] = 1;
+    }
+  }
+  for (int n = 0; n < mesh.node_count(); ++n)
+    if (!used[n])
+      throw MeshError("node " + std::to_string(mesh.node_label(n)) + " of " +
+                          (mesh.source.empty() ? std::string("the mesh") : mesh.source) +
+                          " belongs to no element (it would be free to move with no stiffness)",
                       file);
   std::ostringstream faults;
   int count = 0, first = -1;

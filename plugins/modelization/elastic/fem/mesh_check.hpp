@@ -8,7 +8,9 @@ namespace moreau::fem {
 /// at an integration point, ℓ the element's longest corner-to-corner distance.
 inline constexpr double degenerate_tolerance = 1e-10;
 
-/// Throws MeshError when a node coordinate is not finite, or when an element is inverted
+/// Throws MeshError when the dimension is not 2 or 3, an element's type does not fit it or
+/// refers to a node that does not exist, a node belongs to no element, a node coordinate
+/// is not finite, or when an element is inverted
 /// (Jacobian determinant < 0 at an integration point) or degenerate (see above). The
 /// message lists up to 10 faulty elements with their numbers (and file and line when the
 /// mesh was read from a file) and counts the rest; the exception's element() and line()
