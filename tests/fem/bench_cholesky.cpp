@@ -119,7 +119,7 @@ int main(int argc, char** argv) {
       for (int r = 0; r < repeat; ++r) {
         malloc_trim(0);
         const std::size_t before = heap_in_use();
-        SparseCholesky chol(backend, mesh.dim);
+        SparseCholesky chol(backend);
         auto t0 = Clock::now();
         chol.factorize(A);
         factor = std::min(factor, seconds_since(t0));

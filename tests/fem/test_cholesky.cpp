@@ -25,7 +25,7 @@ TEST(FemCholesky, BackendsAgreeOnTheThetaMatrix) {
     for (CholeskyBackend backend : backends) {
       if (!backend_available(backend)) continue;
       SCOPED_TRACE(std::string(backend_name(backend)));
-      SparseCholesky chol(backend, m.dim);
+      SparseCholesky chol(backend);
       chol.factorize(A);
       EXPECT_NE(chol.backend(), CholeskyBackend::automatic);
       const Eigen::VectorXd x = chol.solve(b);
@@ -60,8 +60,18 @@ TEST(FemCholesky, RefusesSingularOrIndefinite) {
   EXPECT_THROW(unused.solve(Eigen::VectorXd::Zero(3)), std::logic_error);
 }
 
-TEST(FemCholesky, AvailabilityIsReported) {
+TEST(FemCholesky, AvailabilityAndNames) {
   EXPECT_TRUE(backend_available(CholeskyBackend::eigen_ldlt));
+  EXPECT_EQ(automatic_backend(), backend_available(CholeskyBackend::cholmod_simplicial) ? CholeskyBackend::cholmod_simplicial
+                                                                                        : CholeskyBackend::eigen_ldlt);
+  for (CholeskyBackend b : backends) EXPECT_EQ(backend_from_name(backend_name(b)), b);
+  try {
+    backend_from_name("cholesky");
+    FAIL();
+  } catch (const std::invalid_argument& e) {
+    EXPECT_EQ(std::string(e.what()), "unknown sparse Cholesky backend 'cholesky'; valid: automatic, eigen-ldlt, eigen-llt, "
+                                     "cholmod-supernodal, cholmod-simplicial");
+  }
 #ifndef MOREAU_FEM_CHOLMOD
   EXPECT_FALSE(backend_available(CholeskyBackend::cholmod_supernodal));
   EXPECT_THROW(SparseCholesky(CholeskyBackend::cholmod_supernodal), std::runtime_error);

@@ -99,6 +99,17 @@ TEST(FemElement, FacesOfTheTableAreOutward) {
   }
 }
 
+TEST(FemElement, MirrorReversesTheOrientation) {
+  for (ElementType type : test::volume_types()) {
+    Mesh m = test::one_element(type);
+    const double before = element_measure(m, 0);
+    reverse_orientation(type, m.elements.at(0));
+    EXPECT_NEAR(element_measure(m, 0), -before, 1e-14) << element_info(type).name;
+    reverse_orientation(type, m.elements.at(0));
+    EXPECT_EQ(m.elements[0][1], 1);  // an involution
+  }
+}
+
 TEST(FemElement, GmshNumbers) {
   ElementType t;
   ASSERT_TRUE(element_type_from_gmsh(5, t));

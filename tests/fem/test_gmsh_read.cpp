@@ -2,6 +2,7 @@
 // kind of bad file is refused with its file, line and what was expected.
 #include <gtest/gtest.h>
 
+#include <fstream>
 #include <numbers>
 
 #include "fem_test_util.hpp"
@@ -34,6 +35,16 @@ TEST(FemGmsh, FourEncodingsOfOneMeshAgree) {
     ASSERT_EQ(m.boundary_sets.size(), ref.boundary_sets.size());
     for (const auto& [set, facets] : ref.boundary_sets) EXPECT_EQ(m.boundary_set(set).cells.nodes, facets.cells.nodes);
   }
+}
+
+TEST(FemGmsh, WindowsLineEndings) {
+  std::ifstream in(data("square_41.msh"));
+  std::string text, line;
+  while (std::getline(in, line)) text += line + "\r\n";
+  const Mesh crlf = parse_gmsh(text, "crlf.msh"), ref = read_gmsh(data("square_41.msh"));
+  EXPECT_EQ(crlf.x, ref.x);
+  EXPECT_EQ(crlf.elements.nodes, ref.elements.nodes);
+  EXPECT_EQ(crlf.node_sets, ref.node_sets);
 }
 
 TEST(FemGmsh, PhysicalGroupsBecomeSets) {

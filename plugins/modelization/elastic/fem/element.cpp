@@ -31,11 +31,11 @@ constexpr FaceInfo faces_h8[] = {{E::Q4, {0, 3, 2, 1}}, {E::Q4, {4, 5, 6, 7}}, {
                                  {E::Q4, {1, 2, 6, 5}}, {E::Q4, {2, 3, 7, 6}}, {E::Q4, {3, 0, 4, 7}}};
 
 const ElementInfo table[element_type_count] = {
-    {E::L2, "L2", 1, 2, 2, 1, 3, {}, rule_l2, {0, 0, 0}},
-    {E::T3, "T3", 2, 3, 3, 2, 5, faces_t3, rule_t3, {1.0 / 3, 1.0 / 3, 0}},
-    {E::Q4, "Q4", 2, 4, 4, 3, 9, faces_q4, rule_q4, {0, 0, 0}},
-    {E::T4, "T4", 3, 4, 4, 4, 10, faces_t4, rule_t4, {0.25, 0.25, 0.25}},
-    {E::H8, "H8", 3, 8, 8, 5, 12, faces_h8, rule_h8, {0, 0, 0}},
+    {E::L2, "L2", 1, 2, 2, 1, 3, {}, rule_l2, {0, 0, 0}, {1, 0}},
+    {E::T3, "T3", 2, 3, 3, 2, 5, faces_t3, rule_t3, {1.0 / 3, 1.0 / 3, 0}, {0, 2, 1}},
+    {E::Q4, "Q4", 2, 4, 4, 3, 9, faces_q4, rule_q4, {0, 0, 0}, {0, 3, 2, 1}},
+    {E::T4, "T4", 3, 4, 4, 4, 10, faces_t4, rule_t4, {0.25, 0.25, 0.25}, {0, 2, 1, 3}},
+    {E::H8, "H8", 3, 8, 8, 5, 12, faces_h8, rule_h8, {0, 0, 0}, {0, 3, 2, 1, 4, 7, 6, 5}},
 };
 
 // Corner signs of Q4 and H8 nodes in reference coordinates.
@@ -46,6 +46,13 @@ constexpr double sh[8][3] = {{-1, -1, -1}, {1, -1, -1}, {1, 1, -1}, {-1, 1, -1},
 }  // namespace
 
 const ElementInfo& element_info(ElementType type) { return table[static_cast<int>(type)]; }
+
+void reverse_orientation(ElementType type, std::span<int> nodes) {
+  const ElementInfo& info = element_info(type);
+  int copy[27];
+  for (int a = 0; a < info.nodes; ++a) copy[a] = nodes[a];
+  for (int a = 0; a < info.nodes; ++a) nodes[a] = copy[info.mirror[a]];
+}
 
 bool element_type_from_gmsh(int gmsh_type, ElementType& type) {
   for (const ElementInfo& e : table)

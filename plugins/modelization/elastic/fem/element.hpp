@@ -45,7 +45,12 @@ struct ElementInfo {
   std::span<const FaceInfo> faces;          ///< (dim−1)-dimensional faces, outward order
   std::span<const QuadraturePoint> rule;    ///< integrates the consistent mass exactly on affine elements
   std::array<double, 3> centre;             ///< reference centroid
+  std::array<std::uint8_t, 27> mirror;      ///< a node order of the opposite orientation
 };
+
+/// Reverses the orientation of an element's nodes (a mirror image: clockwise ↔
+/// counter-clockwise, negative ↔ positive volume).
+void reverse_orientation(ElementType type, std::span<int> nodes);
 
 const ElementInfo& element_info(ElementType type);
 

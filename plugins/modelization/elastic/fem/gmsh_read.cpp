@@ -530,9 +530,7 @@ void orient_surfaces(Mesh& mesh, const std::vector<int>& entity) {
   for (int e = 0; e < mesh.element_count(); ++e) {
     const auto& c = counts[entity[e]];
     if (c.first != c.second) continue;
-    auto n = mesh.elements.at(e);
-    if (mesh.elements.type[e] == ElementType::T3) std::swap(n[1], n[2]);
-    else std::swap(n[1], n[3]);
+    reverse_orientation(mesh.elements.type[e], mesh.elements.at(e));
     ++turned;
   }
   if (turned > 0)

@@ -45,15 +45,7 @@ void require_type(const char* mesh, ElementType type, ElementType a, ElementType
 /// orientation depends on the block).
 void orient_positive(Mesh& mesh) {
   for (int e = 0; e < mesh.element_count(); ++e) {
-    if (element_measure(mesh, e) > 0) continue;
-    auto n = mesh.elements.at(e);
-    switch (mesh.elements.type[e]) {
-      case ElementType::T3: std::swap(n[1], n[2]); break;
-      case ElementType::Q4: std::swap(n[1], n[3]); break;
-      case ElementType::T4: std::swap(n[1], n[2]); break;
-      case ElementType::H8: std::swap(n[1], n[3]); std::swap(n[5], n[7]); break;
-      default: break;
-    }
+    if (element_measure(mesh, e) < 0) reverse_orientation(mesh.elements.type[e], mesh.elements.at(e));
   }
 }
 

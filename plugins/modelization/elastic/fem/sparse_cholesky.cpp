@@ -93,6 +93,16 @@ std::string_view backend_name(CholeskyBackend backend) {
   return "?";
 }
 
+CholeskyBackend backend_from_name(std::string_view name) {
+  std::string valid;
+  for (CholeskyBackend b : {CholeskyBackend::automatic, CholeskyBackend::eigen_ldlt, CholeskyBackend::eigen_llt,
+                            CholeskyBackend::cholmod_supernodal, CholeskyBackend::cholmod_simplicial}) {
+    if (backend_name(b) == name) return b;
+    valid += (valid.empty() ? "" : ", ") + std::string(backend_name(b));
+  }
+  throw std::invalid_argument("unknown sparse Cholesky backend '" + std::string(name) + "'; valid: " + valid);
+}
+
 bool backend_available(CholeskyBackend backend) {
 #ifdef MOREAU_FEM_CHOLMOD
   (void)backend;
@@ -102,14 +112,20 @@ bool backend_available(CholeskyBackend backend) {
 #endif
 }
 
-CholeskyBackend automatic_backend(Eigen::Index n, Eigen::Index nnz, int dim) {
-  (void)n, (void)nnz, (void)dim;
-  return CholeskyBackend::eigen_ldlt;  // placeholder until the benchmark decides
+CholeskyBackend automatic_backend() {
+  // The benchmark (docs/deformable.md, tests/fem/bench_cholesky.cpp) with Debian's
+  // reference BLAS: CHOLMOD's simplicial LDLᵀ solves fastest at every size in 2D and 3D
+  // (2–4× Eigen's, 1.1–2.5× CHOLMOD's supernodal, for blocks of right-hand sides),
+  // factorises like the others in 2D and 1.7–3.6× slower than the supernodal one in 3D. A run
+  // factorises once and solves every step (free velocity, then LHS⁻¹ H for W), so the
+  // solve decides past about a thousand column solves, a hundred steps of a few contacts.
+  // Without CHOLMOD, Eigen's LDLᵀ (as fast as its LLᵀ, never slower to factorise).
+  return backend_available(CholeskyBackend::cholmod_simplicial) ? CholeskyBackend::cholmod_simplicial
+                                                                  : CholeskyBackend::eigen_ldlt;
 }
 
 struct SparseCholesky::Impl {
   CholeskyBackend requested, resolved = CholeskyBackend::automatic;
-  int dim;
   Eigen::Index rows = 0;
   std::unique_ptr<Solver> solver;
 
@@ -126,9 +142,8 @@ struct SparseCholesky::Impl {
   }
 };
 
-SparseCholesky::SparseCholesky(CholeskyBackend backend, int dim) : impl_(std::make_unique<Impl>()) {
+SparseCholesky::SparseCholesky(CholeskyBackend backend) : impl_(std::make_unique<Impl>()) {
   impl_->requested = backend;
-  impl_->dim = dim;
   if (backend != CholeskyBackend::automatic && !backend_available(backend)) make_solver(backend);  // throws
 }
 
@@ -139,7 +154,7 @@ SparseCholesky& SparseCholesky::operator=(SparseCholesky&&) noexcept = default;
 void SparseCholesky::factorize(const Eigen::SparseMatrix<double>& A) {
   if (A.rows() != A.cols()) throw std::invalid_argument("sparse Cholesky: the matrix is not square");
   Impl& m = *impl_;
-  m.resolved = m.requested == CholeskyBackend::automatic ? automatic_backend(A.rows(), A.nonZeros(), m.dim) : m.requested;
+  m.resolved = m.requested == CholeskyBackend::automatic ? automatic_backend() : m.requested;
   m.solver = make_solver(m.resolved);
   m.rows = A.rows();
   m.solver->analyze(A);

@@ -3,7 +3,8 @@
 // LHS_ff), behind one interface so the backend is chosen by measurement, not by the caller.
 // Backends: Eigen's SimplicialLDLT/LLT (AMD ordering) and, when moreau is built with
 // SuiteSparse, CHOLMOD (supernodal LLᵀ with BLAS, or simplicial LDLᵀ) through Eigen's
-// wrapper. `automatic` is the benchmark's choice (docs/deformable.md).
+// wrapper. `automatic` is the benchmark's choice (docs/deformable.md): CHOLMOD's simplicial
+// LDLᵀ when the build has it, Eigen's LDLᵀ otherwise.
 #include <Eigen/Core>
 #include <Eigen/SparseCore>
 #include <memory>
@@ -13,15 +14,18 @@ namespace moreau::fem {
 
 enum class CholeskyBackend { automatic, eigen_ldlt, eigen_llt, cholmod_supernodal, cholmod_simplicial };
 
+/// "automatic", "eigen-ldlt", "eigen-llt", "cholmod-supernodal", "cholmod-simplicial".
 std::string_view backend_name(CholeskyBackend backend);
+/// The backend of that name; an unknown name throws std::invalid_argument listing the valid ones.
+CholeskyBackend backend_from_name(std::string_view name);
 /// Whether this build has the backend (CHOLMOD ones need SuiteSparse at build time).
 bool backend_available(CholeskyBackend backend);
-/// The backend `automatic` picks for an n × n matrix with nnz stored entries in dimension dim.
-CholeskyBackend automatic_backend(Eigen::Index n, Eigen::Index nnz, int dim);
+/// The backend `automatic` stands for in this build.
+CholeskyBackend automatic_backend();
 
 class SparseCholesky {
  public:
-  explicit SparseCholesky(CholeskyBackend backend = CholeskyBackend::automatic, int dim = 3);
+  explicit SparseCholesky(CholeskyBackend backend = CholeskyBackend::automatic);
   ~SparseCholesky();
   SparseCholesky(SparseCholesky&&) noexcept;
   SparseCholesky& operator=(SparseCholesky&&) noexcept;

@@ -7,8 +7,8 @@
 namespace moreau::fem {
 
 LinearThetaScheme::LinearThetaScheme(const SparseMatrix& M, const SparseMatrix& C, const SparseMatrix& K, double h,
-                                     double theta, DofPartition partition, CholeskyBackend backend, int dim)
-    : h_(h), theta_(theta), partition_(std::move(partition)), K_(K), factor_(backend, dim) {
+                                     double theta, DofPartition partition, CholeskyBackend backend)
+    : h_(h), theta_(theta), partition_(std::move(partition)), K_(K), factor_(backend) {
   if (!(h > 0) || !std::isfinite(h)) throw std::invalid_argument("θ-scheme: the time step must be > 0");
   if (!(theta >= 0.5 && theta <= 1)) throw std::invalid_argument("θ-scheme: θ must lie in [0.5, 1]");
   const SparseMatrix lhs = theta_lhs(M, C, K, h, theta);

@@ -16,7 +16,7 @@ class LinearThetaScheme {
  public:
   /// M, C, K over all DOFs; h the time step (s), θ in [0.5, 1].
   LinearThetaScheme(const SparseMatrix& M, const SparseMatrix& C, const SparseMatrix& K, double h, double theta,
-                    DofPartition partition, CholeskyBackend backend = CholeskyBackend::automatic, int dim = 3);
+                    DofPartition partition, CholeskyBackend backend = CholeskyBackend::automatic);
 
   /// v⁺ without contact impulses, over all DOFs; `v_imposed` gives the constrained DOFs'
   /// end-of-step values (in DofPartition::constrained() order).
