@@ -118,6 +118,10 @@ TEST(FemMatrices, LoadsSumToTheirResultants) {
   // Nodal forces.
   const Eigen::VectorXd fn = nodal_load(rect, rect.node_set("xmax"), Eigen::Vector2d(0, -3));
   EXPECT_NEAR(fn.sum(), -3.0 * rect.node_set("xmax").size(), 1e-12);
+  // Vectors of the wrong size are refused.
+  EXPECT_THROW(gravity_load(rect, 1000, Eigen::Vector3d(0, 0, -9.81)), std::invalid_argument);
+  EXPECT_THROW(nodal_load(rect, {0}, Eigen::Vector3d(0, 0, 1)), std::invalid_argument);
+  EXPECT_THROW(element_stress(rect, test::steel(Hypothesis::plane_stress), Eigen::VectorXd::Zero(3)), std::invalid_argument);
 }
 
 TEST(FemMatrices, ElementMatricesAreSymmetricAndTheThetaMatrixIsEquationSix) {

@@ -3,6 +3,8 @@
 #include <Eigen/Geometry>
 #include <algorithm>
 #include <cmath>
+#include <stdexcept>
+#include <string>
 
 #include "element_geometry.hpp"
 
@@ -83,6 +85,12 @@ class BlockPattern {
   int dim_;
   std::vector<int> start_, neighbours_;
 };
+
+void require_size(const char* function, const char* what, Eigen::Index size, Eigen::Index expected) {
+  if (size != expected)
+    throw std::invalid_argument(std::string(function) + ": " + what + " has " + std::to_string(size) +
+                                " components, expected " + std::to_string(expected));
+}
 
 }  // namespace
 
@@ -183,6 +191,7 @@ SparseMatrix theta_lhs(const SparseMatrix& M, const SparseMatrix& C, const Spars
 }
 
 Eigen::VectorXd gravity_load(const Mesh& mesh, double density, const Eigen::VectorXd& gravity) {
+  require_size("gravity_load", "gravity", gravity.size(), mesh.dim);
   Eigen::VectorXd f = Eigen::VectorXd::Zero(mesh.dof_count());
   detail::ElementGeometry g;
   for (int e = 0; e < mesh.element_count(); ++e) {
@@ -198,6 +207,7 @@ Eigen::VectorXd gravity_load(const Mesh& mesh, double density, const Eigen::Vect
 }
 
 Eigen::VectorXd nodal_load(const Mesh& mesh, const std::vector<int>& nodes, const Eigen::VectorXd& force) {
+  require_size("nodal_load", "the force", force.size(), mesh.dim);
   Eigen::VectorXd f = Eigen::VectorXd::Zero(mesh.dof_count());
   for (int n : nodes) f.segment(mesh.dim * n, mesh.dim) += force.head(mesh.dim);
   return f;
@@ -234,6 +244,7 @@ Eigen::VectorXd traction_load(const Mesh& mesh, const Facets& facets,
 }
 
 StressField element_stress(const Mesh& mesh, const Material& material, const Eigen::VectorXd& u) {
+  require_size("element_stress", "the displacement", u.size(), mesh.dof_count());
   const double lambda = effective_lambda(material), mu = shear_modulus(material);
   StressField s(6, mesh.element_count());
   detail::ElementGeometry g;

@@ -43,6 +43,7 @@ SparseMatrix rayleigh_damping(const SparseMatrix& M, const SparseMatrix& K, doub
 SparseMatrix theta_lhs(const SparseMatrix& M, const SparseMatrix& C, const SparseMatrix& K, double h, double theta);
 
 // ---- Loads, [dofs], N ----
+// (Vectors of the wrong size throw std::invalid_argument.)
 
 /// Body force of gravity g (m/s², dim components): f_a = ∫ ρ N_a g.
 Eigen::VectorXd gravity_load(const Mesh& mesh, double density, const Eigen::VectorXd& g);
