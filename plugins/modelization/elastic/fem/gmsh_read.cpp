@@ -515,13 +515,11 @@ std::string where(const std::string& file, long line) { return line > 0 ? file +
 /// are all clockwise (negative Jacobian at every integration point).
 void orient_surfaces(Mesh& mesh, const std::vector<int>& entity) {
   std::map<int, std::pair<int, int>> counts;  // entity → (clockwise, total)
-  std::vector<char> clockwise(mesh.element_count(), 0);
   detail::ElementGeometry g;
   for (int e = 0; e < mesh.element_count(); ++e) {
     g.bind(mesh, e);
     bool all_negative = true;
     for (const QuadraturePoint& q : element_info(g.type).rule) all_negative &= g.evaluate(q.xi.data()) < 0;
-    clockwise[e] = all_negative;
     auto& c = counts[entity[e]];
     c.first += all_negative;
     ++c.second;
