@@ -9,8 +9,15 @@ tolerances through `moreau fclib solve` and writes
   OUT/profiles.png                Dolan–Moré performance profiles, one panel per table tolerance
 
     python3 scripts/work_precision.py [--moreau build/bin/moreau] [--problems F.hdf5 ...]
-        [--solvers nlgs psor:relaxation=0.8 ...] [--tolerances 1e-4 1e-8] [--repeat 5]
-        [--max-iter N] [--timeout S] [--out build/work_precision]
+        [--corpus build/corpus] [--solvers nlgs psor:relaxation=0.8 ...] [--tolerances 1e-4 1e-8]
+        [--repeat 5] [--max-iter N] [--timeout S] [--out build/work_precision]
+
+With --corpus DIR (made by scripts/corpus.py), the problems are the shared FCLib files and
+every DIR/problems/*.hdf5, each of those solved twice: cold (r = 0) and warm (its
+/guesses/1/r, the run's warm start; named PROBLEM+warm). It also writes guarantee.md: for
+each problem and table tolerance, the fastest member (every solver but `auto`) and auto's
+time over it, and the summary (problems some member solves, those auto solves, those auto
+solves within k× the fastest member, the worst ratio).
 
 Times are the median of --repeat solves from r = 0 (each with a fresh solver object),
 measured inside moreau around the solve only, after one untimed solve that checks the
@@ -36,6 +43,16 @@ MAX_ITER = {"nlgs": 100000, "psor": 100000, "apgd": 100000, "admm": 100000, "pro
 BASE_SOLVERS = ["nlgs", "psor", "apgd", "admm", "newton", "auto"]
 # Between the table tolerances, so that each solver draws a curve in the error-vs-time plots.
 CURVE_TOLERANCES = [1e-2, 1e-3, 1e-5, 1e-6, 1e-7]
+
+
+SHARED_STEMS = {"CubeH8", "faf-Box_Stacks-i0035-31-0", "faf-Capsules-i97-269", "fclib-local_problem_test",
+                "spheres-in-a-box-98-i10000-256-10"}
+
+
+def stem_of(problem):
+    """The problem's name in tables: the file's stem, +warm when solved from its warm start."""
+    path, warm = problem if isinstance(problem, tuple) else (problem, False)
+    return os.path.splitext(os.path.basename(path))[0] + ("+warm" if warm else "")
 
 
 def fail(msg):
@@ -90,8 +107,12 @@ def check_specs(specs, available):
 
 
 def invoke(moreau, problem, name, params, tol, max_iter, repeat, timeout):
-    """One `moreau fclib solve`: its JSON line as a dict, or a failed record (timeout, crash)."""
-    cmd = [moreau, "fclib", "solve", problem, "--solver", name, "--tol", repr(tol), "--repeat", str(repeat)]
+    """One `moreau fclib solve`: its JSON line as a dict, or a failed record (timeout, crash).
+    `problem`: a path, or (path, warm) to start from the file's warm start."""
+    path, warm = problem if isinstance(problem, tuple) else (problem, False)
+    cmd = [moreau, "fclib", "solve", path, "--solver", name, "--tol", repr(tol), "--repeat", str(repeat)]
+    if warm:
+        cmd.append("--warm-start")
     explicit = {kv.split("=", 1)[0] for kv in params}
     if max_iter and "max_iterations" not in explicit:
         cmd += ["--max-iter", str(max_iter)]
@@ -133,6 +154,10 @@ def main():
     ap.add_argument("--moreau", default=os.path.join(REPO, "build", "bin", "moreau"), help="the moreau binary")
     ap.add_argument("--problems", nargs="+", metavar="FILE",
                     help="FCLib files (default: every *.hdf5 in ../shared/fclib beside the repository)")
+    ap.add_argument("--corpus", metavar="DIR",
+                    help="the shared files plus DIR/problems/*.hdf5 (scripts/corpus.py), cold and warm; "
+                         "default solvers then: the families and auto (no nlgs local-solver variants)")
+    ap.add_argument("--k", type=float, default=1.5, help="the guarantee's time factor in guarantee.md (default 1.5)")
     ap.add_argument("--solvers", nargs="+", metavar="SPEC",
                     help="`name` or `name:key=value,key=value` (passed as --param); default: every family, "
                          "plus prox and the nlgs local solvers when the binary has them")
@@ -156,6 +181,10 @@ def main():
         fail(f"no moreau binary at {moreau} (build it, or pass --moreau PATH)")
     if a.problems:
         problems = a.problems
+    elif a.corpus:
+        shared = os.path.join(os.path.dirname(REPO), "shared", "fclib")
+        problems = sorted(os.path.join(shared, f) for f in os.listdir(shared) if f.endswith(".hdf5")) \
+            if os.path.isdir(shared) else []
     else:
         shared = os.path.join(os.path.dirname(REPO), "shared", "fclib")
         problems = sorted(os.path.join(shared, f) for f in os.listdir(shared) if f.endswith(".hdf5")) \
@@ -165,12 +194,19 @@ def main():
     for f in problems:
         if not os.path.isfile(f):
             fail(f"no problem file {f}")
-    stems = [os.path.splitext(os.path.basename(f))[0] for f in problems]
+    if a.corpus:
+        pdir = os.path.join(a.corpus, "problems")
+        if not os.path.isdir(pdir):
+            fail(f"no {pdir}: make the corpus first (python3 scripts/corpus.py --out {a.corpus})")
+        exported = sorted(os.path.join(pdir, f) for f in os.listdir(pdir) if f.endswith(".hdf5"))
+        problems = problems + exported + [(f, True) for f in exported]
+    stems = [stem_of(f) for f in problems]
     if len(set(stems)) != len(stems):
         fail("two problem files have the same name; the outputs are named after it")
 
     available = plugins(moreau)
-    specs = [parse_spec(s) for s in (a.solvers or default_solvers(available))]
+    default = (BASE_SOLVERS + (["prox"] if "prox" in available else [])) if a.corpus else default_solvers(available)
+    specs = [parse_spec(s) for s in (a.solvers or default)]
     if len({s[0] for s in specs}) != len(specs):
         fail("a solver spec is given twice")
     check_specs(specs, available)
@@ -187,7 +223,7 @@ def main():
 
     rows = []
     for problem in problems:
-        stem = os.path.splitext(os.path.basename(problem))[0]
+        stem = stem_of(problem)
         for label, name, params in specs:
             failed_at = None
             for tol in all_tols:  # loose to tight
@@ -209,10 +245,15 @@ def main():
     command = " ".join(["python3", os.path.relpath(__file__, REPO)] + sys.argv[1:])
     tables.write_markdown(os.path.join(a.out, "table.md"), rows, table_tols, [s[0] for s in specs], command)
     for problem in problems:
-        stem = os.path.splitext(os.path.basename(problem))[0]
+        stem = stem_of(problem)
+        if a.corpus and stem not in SHARED_STEMS:
+            continue  # one figure per shared problem; the corpus is summed up in guarantee.md
         plots.error_vs_time(os.path.join(a.out, f"error_vs_time_{stem}.png"), stem,
                             [r for r in rows if r["problem"] == stem], [s[0] for s in specs])
     plots.profiles(os.path.join(a.out, "profiles.png"), rows, table_tols, [s[0] for s in specs])
+    if any(s[1] == "auto" for s in specs):
+        summary = tables.write_guarantee(os.path.join(a.out, "guarantee.md"), rows, table_tols, a.k, command)
+        print(summary)
     print(f"wrote {a.out}/table.md, table.csv, profiles.png and {len(problems)} error_vs_time_*.png")
 
 

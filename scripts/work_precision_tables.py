@@ -119,3 +119,51 @@ def write_markdown(path, rows, table_tols, solvers, command):
         _reference_table(out, table, tol)
     with open(path, "w") as f:
         f.write("\n".join(out))
+
+
+def write_guarantee(path, rows, table_tols, k, command):
+    """guarantee.md: per problem and table tolerance, the fastest member (any solver but
+    auto) and auto's time over it; then the summary. Returns the summary text."""
+    members = sorted({r["solver"] for r in rows if r["solver"] != "auto"})
+    lines = [f"# auto against its members\n", f"Command: `{command}`\n",
+             f"Members: {', '.join('`' + m + '`' for m in members)}. Ratio: auto's seconds over the fastest "
+             f"member's (medians of the repeats). k = {k:g}.\n"]
+    summary = []
+    for tol in table_tols:
+        at = [r for r in rows if r["tolerance"] == tol and r["table"]]
+        problems = sorted({r["problem"] for r in at})
+        solved = auto_ok = within = 0
+        worst = (0.0, "")
+        table = ["| problem | fastest member | seconds | auto | seconds | ratio |", "|---|---|---:|---|---:|---:|"]
+        misses = []
+        for p in problems:
+            mem = _fastest([r for r in at if r["problem"] == p and r["solver"] != "auto"])
+            au = [r for r in at if r["problem"] == p and r["solver"] == "auto"]
+            au = au[0] if au else None
+            if mem is None:
+                table.append(f"| {p} | none converged | — | {'yes' if au and au['converged'] else 'no'} | "
+                             f"{_secs(au and au['seconds'])} | — |")
+                if au and au["converged"]:
+                    auto_ok += 1
+                continue
+            solved += 1
+            ok = bool(au and au["converged"])
+            ratio = au["seconds"] / mem["seconds"] if ok and mem["seconds"] > 0 else None
+            if ok:
+                auto_ok += 1
+                if ratio is not None and ratio <= k:
+                    within += 1
+                if ratio is not None and ratio > worst[0]:
+                    worst = (ratio, p)
+            else:
+                misses.append(p)
+            table.append(f"| {p} | `{mem['solver']}` | {_secs(mem['seconds'])} | {'yes' if ok else 'NO'} | "
+                         f"{_secs(au and au['seconds'])} | {'—' if ratio is None else f'{ratio:.2f}'} |")
+        text = (f"tolerance {tol_text(tol)}: {len(problems)} problems, {solved} solved by some member, "
+                f"{auto_ok} by auto, {within} by auto within {k:g}x the fastest member; "
+                f"worst ratio {worst[0]:.2f} ({worst[1]})" + (f"; auto failed on {', '.join(misses)}" if misses else ""))
+        summary.append(text)
+        lines += [f"\n## Tolerance {tol_text(tol)}\n", text + "\n", *table]
+    with open(path, "w") as f:
+        f.write("\n".join(lines) + "\n")
+    return "\n".join(summary)

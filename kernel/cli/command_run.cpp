@@ -37,6 +37,10 @@ int command_run(const RunArgs& args, std::ostream& out, std::ostream& err) {
     }
     Scheduler scheduler(*world);
     RunSummary sum = scheduler.run(opt);
+    if (world->contacts) {  // misses are said even with --quiet; a clean run only without it
+      const SolveLog& log = world->contacts->solve_log;
+      if (log.misses() > 0 || !args.quiet) log.print_summary(err);
+    }
     if (!args.quiet) {
       sum.timer.print(err, sum.last_step - sum.first_step);
       if (sum.stopped_by_hook) err << "stopped by a hook: " << sum.stop_reason << "\n";

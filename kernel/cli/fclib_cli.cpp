@@ -63,11 +63,14 @@ void add_fclib_solve_options(CLI::App& cmd, FclibSolveArgs& args) {
   cmd.add_option("--repeat", args.repeat,
                  "solve N times from r = 0, each with a fresh solver; `seconds` is the median time")
       ->check(CLI::PositiveNumber);
+  cmd.add_flag("--warm-start", args.warm_start,
+               "start from the file's /guesses/1/r (a time step's warm start, written by export_problems) instead of r = 0");
 }
 
 int command_fclib_solve(const FclibSolveArgs& args, std::ostream& out, std::ostream& err) {
   return guarded(err, [&] {
     fclib::Problem problem = fclib::read(args.problem);
+    for (const std::string& note : problem.notes) err << "note: " << note << "\n";
     Registry reg(Registry::standard_paths({}, "."));
     const RegistryEntry& entry = reg.require(Kind::solver, args.solver, "--solver");
     std::vector<InputError> errors;
@@ -82,13 +85,16 @@ int command_fclib_solve(const FclibSolveArgs& args, std::ostream& out, std::ostr
     ctx.dimension = problem.local.dim;
 
     const LocalProblem& P = problem.local;
+    if (args.warm_start && !problem.guess_r)
+      throw InputError("/guesses/1/r", "--warm-start: the file has no starting point of the right size", args.problem);
+    const Eigen::VectorXd r0 = args.warm_start ? *problem.guess_r : Eigen::VectorXd::Zero(P.dim * P.contacts());
     Eigen::VectorXd r, u;
     SolverReport rep;
     std::vector<double> times;
     // A fresh solver each time, so that no run profits from what an earlier one cached.
     for (long k = 0; k < args.repeat; ++k) {
       auto solver = reg.create<Solver>(args.solver, Params(filled, ""), ctx, "--solver");
-      r = Eigen::VectorXd::Zero(P.dim * P.contacts());
+      r = r0;
       const auto t0 = std::chrono::steady_clock::now();
       rep = solver->solve(P, r, u);
       times.push_back(std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count());
@@ -105,6 +111,7 @@ int command_fclib_solve(const FclibSolveArgs& args, std::ostream& out, std::ostr
                         {"seconds", median(times)},
                         {"converged", rep.converged && error <= filled.value("tolerance", 0.0)},
                         {"repeats", args.repeat}};
+    if (args.warm_start) line["warm_start"] = true;
     out << line.dump() << "\n";
     if (args.solution) {
       if (problem.global) {

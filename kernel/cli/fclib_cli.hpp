@@ -1,7 +1,7 @@
 #pragma once
 // `moreau fclib solve PROBLEM.hdf5 --solver NAME [--tol X] [--max-iter N] [--solution OUT.hdf5]
-//                     [--param KEY=VALUE]... [--repeat N]`
-// (DESIGN §3.1; --param and --repeat are extensions for the work-precision benchmark.)
+//                     [--param KEY=VALUE]... [--repeat N] [--warm-start]`
+// (DESIGN §3.1; --param, --repeat and --warm-start are extensions for the work-precision benchmark.)
 #include <iosfwd>
 #include <optional>
 #include <string>
@@ -21,6 +21,7 @@ struct FclibSolveArgs {
   std::optional<std::string> solution;
   std::vector<std::string> params;  ///< "KEY=VALUE", VALUE as JSON (or a bare string)
   long repeat = 1;                  ///< solves timed; `seconds` is their median
+  bool warm_start = false;          ///< start from the file's /guesses/1/r (else r = 0)
 };
 
 void add_fclib_solve_options(CLI::App& cmd, FclibSolveArgs& args);

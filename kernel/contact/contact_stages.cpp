@@ -3,11 +3,13 @@
 #include <algorithm>
 #include <cmath>
 #include <cstdio>
+#include <moreau/contact_error.hpp>
 #include <moreau/error.hpp>
 #include <moreau/contact_fields.hpp>
 #include <moreau/node_fields.hpp>
 
 #include "local_frame.hpp"
+#include "stopping_scale.hpp"
 
 namespace moreau::kernel {
 
@@ -225,6 +227,7 @@ void ContactStages::solve(StepContext& c) {
     problem_.q[static_cast<Eigen::Index>(a * d)] +=
         law.normal_shift(LawInput{contacts_[a].point.gap, u0[static_cast<Eigen::Index>(a * d)], c.h});
   }
+  problem_.error_scale = approaching_contacts_scale(problem_);
   assembly_.lend(problem_);
   // Export (scene key export_problems) while the factor is still lent: W may have to be
   // built from it. The warm start is kept first, since the solver overwrites r_.
@@ -235,9 +238,28 @@ void ContactStages::solve(StepContext& c) {
   assembly_.take_back(problem_);
   for (Eigen::Index i = 0; i < r_.size(); ++i)
     if (!std::isfinite(r_[i])) throw RunError("the contact solver returned non-finite impulses at step " + std::to_string(c.step));
+  // With "on_failure": "stop" a miss ends the run below: the error message says it all.
+  if (report_.converged || !stop_on_failure)
+    solve_log.record(c.step + 1, report_, [&] { return worst_contact_bodies(c.state); });
   if (!report_.converged && stop_on_failure)
-    throw RunError("the contact solver did not converge at step " + std::to_string(c.step) + " (error " +
-                   std::to_string(report_.error) + " after " + std::to_string(report_.iterations) + " iterations)");
+    throw RunError("the contact solver did not converge at step " + std::to_string(c.step + 1) + " (error " +
+                   scientific(report_.error) + " after " + std::to_string(report_.iterations) + " iterations)");
+}
+
+std::string ContactStages::worst_contact_bodies(const State& st) const {
+  // The contact whose one-contact natural map is largest: where the solve is worst.
+  const int d = problem_.dim;
+  double worst = -1;
+  std::size_t at = 0;
+  if (u_.size() != r_.size() || r_.size() != static_cast<Eigen::Index>(contacts_.size() * d)) return "";
+  for (std::size_t a = 0; a < contacts_.size(); ++a) {
+    const double e = contact_natural_map_squared(d, problem_.mu[static_cast<Eigen::Index>(a)], r_.data() + a * d, u_.data() + a * d);
+    if (e > worst) worst = e, at = a;
+  }
+  if (worst < 0) return "";
+  const auto& names = st.names();
+  return "\"" + names[contactors[contacts_[at].contactor[0]].body] + "\" and \"" +
+         names[contactors[contacts_[at].contactor[1]].body] + "\"";
 }
 
 void ContactStages::store_reactions(StepContext& c) {

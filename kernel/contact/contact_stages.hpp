@@ -22,6 +22,7 @@
 #include "placement.hpp"
 #include "problem_export.hpp"
 #include "contact_assembly.hpp"
+#include "solve_log.hpp"
 
 namespace moreau::kernel {
 
@@ -57,6 +58,7 @@ class ContactStages {
   double alert = 0;
   bool stop_on_failure = false;
   std::unique_ptr<ProblemExport> exporter;  ///< null unless the scene has `export_problems`
+  SolveLog solve_log;  ///< misses and worst error of the run's solves (its tolerance set by the builder)
 
   void detection_configuration(StepContext& ctx);
   void broad_phase(StepContext& ctx);
@@ -80,6 +82,7 @@ class ContactStages {
   };
   const DetectorUse* detector_for(const std::string& a, const std::string& b) const;
   void warn_initial_overlaps(const StepContext& c);
+  std::string worst_contact_bodies(const State& st) const;
   bool initial_overlaps_checked_ = false;
 
   /// Per contactor: world pose at the detection configuration (position 3, then rotation

@@ -5,6 +5,7 @@
 #include <moreau/contact_problem.hpp>
 #include <optional>
 #include <string>
+#include <vector>
 
 namespace moreau::fclib {
 
@@ -17,10 +18,22 @@ struct GlobalProblem {
 
 struct Problem {
   bool global = false;
+  /// What the reader had to interpret, for stderr (e.g. a mass matrix stored as one triangle).
+  std::vector<std::string> notes;
   LocalProblem local;    ///< the problem itself, or the global one reduced
   GlobalProblem global_problem;
   std::optional<Eigen::VectorXd> guess_r;  ///< /guesses/1/r when present (never /solution)
 };
+
+/// How a square matrix meant to be symmetric is stored: both triangles (symmetric to
+/// `relative_tolerance` × its largest entry), one triangle only, diagonal, or neither.
+enum class MatrixStorage { full, upper, lower, diagonal, unsymmetric };
+MatrixStorage symmetric_storage(const Eigen::SparseMatrix<double>& M, double relative_tolerance = 1e-10);
+/// The symmetric matrix M stands for: M itself when symmetric (or diagonal), T + Tᵀ − diag(T)
+/// when only one triangle T is stored (then `note` says so); InputError at `dataset` when M is
+/// neither (never handed to a Cholesky).
+Eigen::SparseMatrix<double> symmetric_matrix(const Eigen::SparseMatrix<double>& M, const std::string& dataset,
+                                             const std::string& file, std::string* note);
 
 /// Reads a problem. Faults: InputError with the file and the HDF5 path of the fault.
 Problem read(const std::string& path);

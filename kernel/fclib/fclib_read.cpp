@@ -106,6 +106,11 @@ Problem read(const std::string& path) {
     GlobalProblem& g = p.global_problem;
     g.dim = static_cast<int>(dim);
     g.M = matrix(f.get(), "/fclib_global/M", path);
+    if (g.M.rows() == g.M.cols()) {  // a symmetric M may be stored as one triangle
+      std::string note;
+      g.M = symmetric_matrix(g.M, "/fclib_global/M", path, &note);
+      if (!note.empty()) p.notes.push_back(note);
+    }
     g.H = matrix(f.get(), "/fclib_global/H", path);
     g.f = eigen(vec(f.get(), "/fclib_global/vectors/f", path));
     g.w = eigen(vec(f.get(), "/fclib_global/vectors/w", path));

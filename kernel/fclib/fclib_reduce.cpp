@@ -12,6 +12,14 @@ bool is_diagonal(const Eigen::SparseMatrix<double>& M) {
       if (it.row() != it.col() && it.value() != 0) return false;
   return true;
 }
+
+/// A Cholesky reads one triangle: a matrix that is not symmetric would be silently replaced
+/// by another (read() rebuilds one-triangle storage, so this only stops other callers).
+void require_symmetric(const Eigen::SparseMatrix<double>& M, const std::string& file) {
+  const MatrixStorage s = symmetric_storage(M);
+  if (s != MatrixStorage::full && s != MatrixStorage::diagonal)
+    throw InputError("/fclib_global/M", "M is not symmetric: refused for its Cholesky factorisation", file);
+}
 }  // namespace
 
 LocalProblem reduce(const GlobalProblem& g, const std::string& file) {
@@ -28,6 +36,7 @@ LocalProblem reduce(const GlobalProblem& g, const std::string& file) {
     MinvH = inv.asDiagonal() * g.H;
     Minvf = inv.cwiseProduct(g.f);
   } else {
+    require_symmetric(g.M, file);
     Eigen::SimplicialLDLT<Eigen::SparseMatrix<double>> chol(g.M);
     if (chol.info() != Eigen::Success)
       throw InputError("/fclib_global/M", "M is not symmetric positive definite (its factorisation failed)", file);
@@ -43,6 +52,7 @@ LocalProblem reduce(const GlobalProblem& g, const std::string& file) {
 
 Eigen::VectorXd global_velocity(const GlobalProblem& g, const Eigen::VectorXd& r) {
   const Eigen::VectorXd rhs = g.H * r + g.f;
+  require_symmetric(g.M, "");
   Eigen::SimplicialLDLT<Eigen::SparseMatrix<double>> chol(g.M);
   return chol.solve(rhs);
 }

@@ -317,6 +317,7 @@ class SceneChecker {
     cs->solver = reg.create<Solver>(solver_.name, solver_.params, ctx, solver_.pointer);
     cs->alert = detection_["alert"].get<double>();
     cs->stop_on_failure = stop_on_failure_;
+    cs->solve_log.tolerance = solver_.params.json().value("tolerance", 0.0);
     if (export_) cs->exporter = std::make_unique<ProblemExport>(export_settings(w, ctx));
     w.contacts = std::move(cs);
   }

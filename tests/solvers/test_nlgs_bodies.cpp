@@ -189,9 +189,8 @@ namespace {
 std::unique_ptr<moreau::Solver> auto_solver(long nlgs_sweeps, long direct_max_contacts = 1000) {
   return moreau_test::create<moreau::Solver>(
       "auto",
-      {{"tolerance", 1e-11}, {"max_iterations", 20000}, {"nlgs_sweeps", nlgs_sweeps}, {"stall_sweeps", 10},
-       {"newton_iterations", 100}, {"newton_stall", 20}, {"admm_iterations", 5000}, {"admm_stall", 300},
-       {"direct_max_contacts", direct_max_contacts}, {"apgd_iterations", 500}},
+      {{"tolerance", 1e-11}, {"max_iterations", 20000}, {"nlgs_sweeps", nlgs_sweeps}, {"check_every", 5},
+       {"direct_max_contacts", direct_max_contacts}},
       moreau::BuildContext{});
 }
 

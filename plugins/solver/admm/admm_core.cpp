@@ -1,5 +1,7 @@
 #include "admm_core.hpp"
 
+#include "../deadline.hpp"
+
 #include <algorithm>
 #include <cmath>
 #include <vector>
@@ -124,6 +126,7 @@ SolverReport Admm::solve(const LocalProblem& P, const Options& o, Eigen::VectorX
   }
   double tau_k = 1, e_k = INFINITY;
   std::vector<double> best_hist;
+  const Deadline deadline(o.max_seconds);
   for (long it = 1; it <= o.max_iterations; ++it) {
     rep.iterations = it;
     tmp = P.W * x + P.q;  // the shift from the unprojected iterate, as Siconos does
@@ -150,6 +153,7 @@ SolverReport Admm::solve(const LocalProblem& P, const Options& o, Eigen::VectorX
       const auto h = static_cast<long>(best_hist.size());
       if (h > o.stall_window && best_err > o.stall_factor * best_hist[h - 1 - o.stall_window]) break;
     }
+    if (deadline.passed()) break;
     const double e = primal * primal + dual * dual;
     if (o.acceleration && e < o.restart * e_k) {
       const double tau = 0.5 * (1 + std::sqrt(1 + 4 * tau_k * tau_k));

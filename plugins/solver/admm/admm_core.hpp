@@ -33,6 +33,8 @@ struct Options {
   /// times its value of `stall_window` iterations before (0: never). Used by `auto`.
   long stall_window = 0;
   double stall_factor = 0.5;
+  /// Wall-clock limit of the solve in seconds (0: none), checked after each iteration. Used by `auto`.
+  double max_seconds = 0;
 };
 
 class Admm {

@@ -1,5 +1,7 @@
 #include "apgd_core.hpp"
 
+#include "../deadline.hpp"
+
 #include <cmath>
 #include <moreau/contact_error.hpp>
 #include <moreau/factor_matrix.hpp>
@@ -101,6 +103,7 @@ SolverReport solve(const LocalProblem& P, const Options& o, Eigen::VectorXd& r, 
   double best_err = natural_map_error(P, x, u);
   best = x;
   double L = 1, theta = 1;
+  const Deadline deadline(o.max_seconds);
   for (long it = 1; it <= o.max_iterations && best_err > o.tolerance; ++it) {
     rep.iterations = it;
     g = Wy + P.q;
@@ -140,6 +143,7 @@ SolverReport solve(const LocalProblem& P, const Options& o, Eigen::VectorXd& r, 
       best_err = e;
       best = x;
     }
+    if (deadline.passed()) break;
   }
   r = best;
   W.apply(r, u);

@@ -20,6 +20,8 @@ struct Options {
   long max_iterations = 10000;
   double shrink = 0.9;   ///< L ← shrink·L after each accepted step (1: never shrinks)
   bool restart = true;   ///< gradient restart of the extrapolation
+  /// Wall-clock limit of the solve in seconds (0: none), checked after each iteration. Used by `auto`.
+  double max_seconds = 0;
 };
 
 SolverReport solve(const LocalProblem& P, const Options& o, Eigen::VectorXd& r, Eigen::VectorXd& u);

@@ -1,19 +1,34 @@
-// `auto`: the solver to use when one does not know which. It starts cheap, with NLGS sweeps
-// (nlgs_sweep.hpp), which finish easy problems (few contacts, well conditioned) in a few
-// sweeps. When the error stops falling fast (stagnation: the best error has not halved over
-// the last `stall_sweeps` sweeps), it moves on from the best iterate so far to the
-// regularised semismooth Newton method (newton_core.hpp), and when Newton stalls in turn,
-// to ADMM (admm_core.hpp), then back to Newton (with another Alart–Curnier parameter), and
-// so on until the tolerance or the iteration budget is reached, or four stages in a row
-// did not improve the error. Above `direct_max_contacts`, where factorising W costs more
-// than many sweeps, APGD and NLGS alternate instead. Every stage starts from the best iterate seen, and the one
-// returned is the best; `iterations` counts all of them (sweeps, Newton and ADMM steps).
-// Stopping test: the DESIGN §1 error, recomputed from r.
-// From the time-stepper (factored W present), the NLGS stage goes through body velocities
-// (nlgs_body_sweep.hpp) and W is assembled only if the later stages are needed, so easy
-// steps never pay for it.
+// `auto`: the solver to use when one does not know which. A portfolio of member methods
+// (NLGS; regularised semismooth Newton and ADMM when a factorisation of W fits; APGD when
+// it does not) that shares the time between them from what it measures while solving:
+// each member's progress per second (decades of error gained per second of its own
+// time), its cost per iteration, and the time a switch would cost.
+//
+// 1. NLGS first, on exactly the `nlgs` schedule (error at sweep 1, then every
+//    `check_every` sweeps; through body velocities in the time-stepper): a warm-started
+//    step that NLGS finishes costs what `nlgs` costs. NLGS keeps going while its measured
+//    rate says it will finish within the time spent so far, or within what the best other
+//    member took on earlier problems of this run (per contact), whichever is larger.
+// 2. Otherwise the members take turns in time slices that double: each slice goes to the
+//    member that, from its last measured rate, would finish soonest, except that a member
+//    whose time is under a quarter of the total is tried first (so a member that looked
+//    bad once gets another chance, with a budget that grows with the solve). A slice
+//    starts from the best iterate so far; a member whose slice from the best gained
+//    nothing continues its own run from the warm start instead (Newton from NLGS's best
+//    can sit in a local minimum of its merit where Newton alone would not).
+// 3. The answer is the best iterate of all; the solve ends at the tolerance, at
+//    `max_iterations` (all members' iterations together), or when every member had two
+//    slices in a row without gain.
+// The time a member took to converge is remembered per contact, so in a run of many
+// steps the switch from NLGS happens at once where another member was faster before, and
+// never where it was not.
 #include <algorithm>
+#include <array>
+#include <chrono>
 #include <cmath>
+#include <cstdio>
+#include <cstdlib>
+#include <limits>
 #include <moreau/contact_error.hpp>
 #include <moreau/factor_matrix.hpp>
 #include <moreau/solver.hpp>
@@ -27,34 +42,47 @@
 
 namespace {
 using namespace moreau;
+using Clock = std::chrono::steady_clock;
+
+double seconds_since(Clock::time_point t0) { return std::chrono::duration<double>(Clock::now() - t0).count(); }
+
+enum Member { nlgs_member, newton_member, admm_member, apgd_member, member_count };
+
+/// What auto knows of one member during a solve.
+struct MemberState {
+  bool available = false;
+  double spent = 0;         ///< seconds of this solve
+  double rate = -1;         ///< ln(error) gained per second in its last slice; −1: not tried
+  int slices = 0;
+  int fruitless = 0;        ///< consecutive slices without gain
+  bool own_run = false;     ///< continues its own iterate instead of starting from the best
+  Eigen::VectorXd own;      ///< its own iterate (own_run)
+  double own_err = std::numeric_limits<double>::infinity();
+  bool excluded() const { return !available || (slices >= 2 && fruitless >= 2); }
+};
 
 class Auto : public Solver {
  public:
   static Schema schema() {
     Schema s;
-    s.number("tolerance", "target DESIGN §1 error").gt(0).fallback(1e-6);
-    s.integer("max_iterations", "maximum iterations of all stages together (NLGS sweeps, Newton and ADMM steps)").min(1).fallback(20000);
-    s.integer("nlgs_sweeps", "maximum NLGS sweeps of the first stage").min(0).fallback(200);
-    s.integer("stall_sweeps", "the NLGS stage ends when the best error has not halved over this many sweeps").min(1).fallback(10);
-    s.integer("newton_iterations", "maximum iterations of one Newton stage").min(1).fallback(100);
-    s.integer("newton_stall", "a Newton stage ends when the best error has not halved over this many iterations").min(1).fallback(20);
-    s.integer("admm_iterations", "maximum iterations of one ADMM stage").min(1).fallback(5000);
-    s.integer("admm_stall", "an ADMM stage ends when the best error has not halved over this many iterations").min(1).fallback(300);
-    s.integer("direct_max_contacts", "above this many contacts, no Newton or ADMM (their sparse LU of W): APGD and NLGS in turn").min(0).fallback(1000);
-    s.integer("apgd_iterations", "maximum iterations of one APGD stage (above direct_max_contacts)").min(1).fallback(500);
+    s.number("tolerance", "target error (DESIGN §1; in a time step normalised by the approaching contacts)").gt(0).fallback(1e-4);
+    s.integer("max_iterations", "maximum iterations of all members together (NLGS sweeps, Newton, ADMM and APGD steps)").min(1).fallback(20000);
+    s.integer("nlgs_sweeps", "maximum sweeps of the first NLGS stage (0: start with the other members)").min(0).fallback(100000);
+    s.integer("check_every", "NLGS sweeps between two evaluations of the error (as nlgs)").min(1).fallback(5);
+    s.integer("direct_max_contacts", "above this many contacts, no sparse factorisation (Newton, ADMM): APGD instead").min(0).fallback(1000);
     return s;
   }
-  static constexpr const char* doc = "NLGS sweeps, then regularised Newton and ADMM in turn from the best iterate, until converged";
+  static constexpr const char* doc =
+      "portfolio: NLGS first, then NLGS, Newton, ADMM (or APGD for large problems) in time slices chosen by measured progress";
 
   Auto(const Params& p, const BuildContext&)
       : tol_(p.number("tolerance")), max_it_(p.integer("max_iterations")), nlgs_sweeps_(p.integer("nlgs_sweeps")),
-        stall_sweeps_(p.integer("stall_sweeps")), newton_it_(p.integer("newton_iterations")),
-        newton_stall_(p.integer("newton_stall")), admm_it_(p.integer("admm_iterations")), admm_stall_(p.integer("admm_stall")),
-        direct_max_contacts_(p.integer("direct_max_contacts")), apgd_it_(p.integer("apgd_iterations")) {}
+        check_(p.integer("check_every")), direct_max_contacts_(p.integer("direct_max_contacts")) {}
 
   bool reads_matrix_with_factor() const override { return false; }
 
   SolverReport solve(const LocalProblem& P, Eigen::VectorXd& r, Eigen::VectorXd& u) override {
+    const Clock::time_point t0 = Clock::now();
     const int d = P.dim;
     const Eigen::Index nc = P.contacts(), n = d * nc;
     SolverReport rep;
@@ -64,142 +92,282 @@ class Auto : public Solver {
       rep.converged = true;
       return rep;
     }
-    const bool bodies = P.factor.present();
-    if (bodies) body_sweeper_.prepare(P, r);
-    auto velocities = [&](const Eigen::VectorXd& x, Eigen::VectorXd& v) {
-      if (bodies)
-        body_sweeper_.velocities(x, v);
-      else
-        v = P.W * x + P.q;
-    };
-    velocities(r, u);
-    double best_err = natural_map_error(P, r, u);
-    Eigen::VectorXd best = r;
-    long total = 0;
+    P_ = &P;
+    bodies_ = P.factor.present();
+    assembled_ready_ = false;
+    if (bodies_) body_sweeper_.prepare(P, r);  // the records, once per solve
+    const Eigen::VectorXd start = r;
+    best_ = r;
+    best_err_ = std::numeric_limits<double>::infinity();
+    total_ = 0;
     auto finish = [&]() {
-      r = best;
+      if (!std::isfinite(best_err_)) best_ = start;  // no iterate was ever evaluated
+      r = best_;
       velocities(r, u);
-      rep.iterations = total;
+      rep.iterations = total_;
       rep.error = natural_map_error(P, r, u);
       rep.converged = rep.error <= tol_;
       return rep;
     };
-    auto keep = [&](const Eigen::VectorXd& x, double e) {
-      if (e < best_err && x.allFinite()) {
-        best_err = e;
-        best = x;
-      }
-    };
-    if (best_err <= tol_) return finish();
 
-    // 1. NLGS sweeps from the best iterate, the error checked every few sweeps, until the
-    // best error stops halving over `stall_sweeps`. True when converged.
-    const long check = std::max<long>(1, std::min<long>(5, stall_sweeps_));
-    if (!bodies) sweeper_.prepare(P);
-    std::vector<Eigen::Index> given(static_cast<std::size_t>(nc));
-    for (Eigen::Index a = 0; a < nc; ++a) given[static_cast<std::size_t>(a)] = a;
-    bool first_nlgs = true;
-    auto nlgs_stage = [&]() {
-      if (!first_nlgs) {
-        r = best;
-        if (bodies) body_sweeper_.prepare(P, r);  // Δv from the restarting iterate
-      }
-      first_nlgs = false;
-      std::vector<double> hist;  // best error at each check
-      for (long it = 1; it <= nlgs_sweeps_ && total < max_it_; ++it) {
-        if (bodies)
-          body_sweeper_.sweep(r, 1.0, given);
-        else
-          sweeper_.sweep(P, r);
-        ++total;
-        if (it % check != 0) continue;
-        velocities(r, u);
-        const double e = natural_map_error(P, r, u);
-        if (!std::isfinite(e)) break;
-        keep(r, e);
-        if (best_err <= tol_) return true;
-        hist.push_back(best_err);
-        const long back = stall_sweeps_ / check;
-        const auto h = static_cast<long>(hist.size());
-        if (h > back && best_err > 0.5 * hist[h - 1 - back]) break;  // stagnation
-      }
-      return false;
-    };
-    if (nlgs_stage()) return finish();
-
-    int fruitless = 0;  // consecutive stages that did not improve the best error
-
-    // 2a. Many contacts: no factorisation (Newton's and ADMM's sparse LU of W fill in like
-    // a 3D grid's: 0.8 s per Newton step at 3200 sphere contacts, minutes at 10⁴). APGD
-    // (a product by W per step, through the factor when W was not given) and NLGS in
-    // turn, each from the best iterate.
-    if (nc > direct_max_contacts_) {
-      bool apgd_next = true;
-      while (total < max_it_ && fruitless < 4 && best_err > tol_) {
-        const double before = best_err;
-        if (apgd_next) {
-          Eigen::VectorXd x = best, v;
-          apgd::Options o;
-          o.tolerance = tol_;
-          o.max_iterations = std::min(max_it_ - total, apgd_it_);
-          const SolverReport s = apgd::solve(P, o, x, v);
-          total += std::max<long>(s.iterations, 1);
-          keep(x, s.error);
-        } else if (nlgs_stage()) {
-          break;
-        }
-        fruitless = best_err < 0.9 * before ? 0 : fruitless + 1;
-        apgd_next = !apgd_next;
-      }
-      return finish();
+    const bool direct = nc <= direct_max_contacts_;
+    std::array<MemberState, member_count> m;
+    m[nlgs_member].available = true;
+    m[newton_member].available = direct;
+    m[admm_member].available = direct;
+    m[apgd_member].available = !direct;
+    // Newton and ADMM follow their own runs from the warm start, as each would alone:
+    // started from NLGS's iterate, Newton can crawl for hundreds of steps where alone it
+    // converges in tens (measured on spheres-in-a-box at 1e-8: 0.36 s alone, 3.9 s from
+    // the best iterate). NLGS and APGD, first-order methods, start from the best.
+    for (Member k : {newton_member, admm_member}) {
+      m[k].own_run = true;
+      m[k].own = r;
     }
 
-    // 2b. Newton and ADMM in turn, each from the best iterate, on W (assembled now if only
-    // the factor was given).
-    LocalProblem assembled;
-    const LocalProblem& Q = P.W.rows() == n || total >= max_it_ ? P : assembled;
-    if (&Q == &assembled) {
-      assembled.dim = d;
-      assembled.W = assemble_w(d, P.factor);
-      assembled.q = P.q;
-      assembled.mu = P.mu;
+    // 1. NLGS on the `nlgs` schedule, while its own rate says it finishes soon enough.
+    if (nlgs_sweeps_ > 0) {
+      const double before = seconds_since(t0);
+      double first_err = 0;
+      const double rate = run_nlgs(r, nlgs_sweeps_, 0, t0, true, &first_err);
+      if (trace_) std::fprintf(stderr, "auto: first nlgs %.2es best %.2e rate %.2e it %ld\n", seconds_since(t0) - before, best_err_, rate, total_);
+      if (best_err_ <= tol_) return finish();
+      account(m[nlgs_member], seconds_since(t0) - before, rate);
+    } else {
+      velocities(r, u);
+      keep(r, natural_map_error(P, r, u));
     }
-    bool newton_next = true;
-    int newton_stages = 0;
-    while (total < max_it_ && fruitless < 4) {
-      Eigen::VectorXd x = best, v;
-      const long budget = std::min(max_it_ - total, newton_next ? newton_it_ : admm_it_);
-      SolverReport s;
-      if (newton_next) {
-        newton::Options o;
-        o.tolerance = tol_;
-        o.max_iterations = budget;
-        o.stall_window = newton_stall_;
-        // Each Newton stage with another Alart–Curnier parameter: where one stalls (a
-        // local minimum of its merit), another usually does not.
-        static constexpr double scales[] = {3.0, 10.0, 1.0, 30.0, 0.3};
-        o.rho_scale = scales[newton_stages++ % 5];
-        s = newton_.solve(Q, o, x, v);
-      } else {
-        admm::Options o;
-        o.tolerance = tol_;
-        o.max_iterations = budget;
-        o.stall_window = admm_stall_;
-        s = admm_.solve(Q, o, x, v);
+    if (!std::isfinite(best_err_)) return finish();
+
+    // 2. Slices that double, to the member expected to finish first.
+    while (best_err_ > tol_ && total_ < max_it_) {
+      const double elapsed = seconds_since(t0);
+      const int who = next_member(m, elapsed);
+      if (who < 0) break;
+      MemberState& ms = m[who];
+      // The member expected to finish first gets the time spent so far (slices double);
+      // a member tried to measure its rate gets a quarter of it.
+      const double slice = std::max((who == exploring_ ? 0.25 : 1.0) * elapsed, 1e-5);
+      if (ms.own_run && !std::isfinite(ms.own_err)) {  // its start's error, once (hard problems only)
+        Eigen::VectorXd v = with_w().W * ms.own + P.q;
+        ms.own_err = natural_map_error(P, ms.own, v);
       }
-      total += std::max<long>(s.iterations, 1);
-      const double before = best_err;
-      keep(x, s.error);
-      if (best_err <= tol_) break;
-      fruitless = best_err < 0.9 * before ? 0 : fruitless + 1;
-      newton_next = !newton_next;
+      Eigen::VectorXd x = ms.own_run ? ms.own : best_;
+      const double from = ms.own_run ? ms.own_err : best_err_;
+      const double t_start = seconds_since(t0);
+      double reached = 0;
+      const double window_rate = run_member(static_cast<Member>(who), x, slice, &reached);
+      const double took = seconds_since(t0) - t_start;
+      if (best_err_ <= tol_) {
+        remember_other(static_cast<Member>(who), took, nc, true);
+        break;
+      }
+      remember_other(static_cast<Member>(who), took, nc, false);
+      const double gain = reached < from ? std::log(from / reached) : 0.0;
+      if (trace_) std::fprintf(stderr, "auto: %.4fs member %d slice %.2es took %.2es from %.2e reached %.2e best %.2e own %d it %ld\n",
+                               seconds_since(t0), who, slice, took, from, reached, best_err_, int(ms.own_run), total_);
+      account(ms, took, who == nlgs_member ? window_rate : gain / std::max(took, 1e-12));
+      if (gain < std::log(1 / 0.9)) ++ms.fruitless;
+      else ms.fruitless = 0;
+      if (ms.own_run) {
+        ms.own = x;
+        ms.own_err = std::min(ms.own_err, reached);
+      }
     }
     return finish();
   }
 
  private:
+  /// u = W x + q, through the bodies when only the factor was given.
+  void velocities(const Eigen::VectorXd& x, Eigen::VectorXd& v) {
+    if (bodies_)
+      body_sweeper_.velocities(x, v);
+    else
+      v = P_->W * x + P_->q;
+  }
+  void keep(const Eigen::VectorXd& x, double e) {
+    if (e < best_err_ && x.allFinite()) {
+      best_err_ = e;
+      best_ = x;
+    }
+  }
+  /// The problem with W, assembled from the factor the first time a member needs it.
+  const LocalProblem& with_w() {
+    const LocalProblem& P = *P_;
+    if (P.W.rows() == P.dim * P.contacts()) return P;
+    if (!assembled_ready_) {
+      assembled_.dim = P.dim;
+      assembled_.W = assemble_w(P.dim, P.factor);
+      assembled_.q = P.q;
+      assembled_.mu = P.mu;
+      assembled_.error_scale = P.error_scale;
+      assembled_ready_ = true;
+    }
+    return assembled_;
+  }
+
+  /// NLGS sweeps from x (error at the first sweep, then every check_): until converged,
+  /// `max_sweeps`, the deadline (`seconds` > 0), or, for the first stage (`first`), until
+  /// its measured rate says another member would finish sooner. Returns its last measured
+  /// rate (ln of the error per second; 0 when unknown); `reached`: its lowest error.
+  double run_nlgs(Eigen::VectorXd& x, long max_sweeps, double seconds, Clock::time_point t0, bool first, double* reached) {
+    const LocalProblem& P = *P_;
+    const Eigen::Index nc = P.contacts();
+    if (bodies_) {
+      if (!first) body_sweeper_.reset_velocities(x);  // the first stage starts where prepare() set Δv
+    } else {
+      sweeper_.prepare(P);
+    }
+    if (static_cast<Eigen::Index>(order_.size()) != nc) {
+      order_.resize(static_cast<std::size_t>(nc));
+      for (Eigen::Index a = 0; a < nc; ++a) order_[static_cast<std::size_t>(a)] = a;
+    }
+    const Clock::time_point s0 = Clock::now();
+    Eigen::VectorXd v;
+    struct Check {
+      double t, err;
+    };
+    std::vector<Check> hist;
+    double own_best = std::numeric_limits<double>::infinity(), rate = 0;
+    *reached = own_best;
+    for (long it = 1; it <= max_sweeps && total_ < max_it_; ++it) {
+      if (bodies_)
+        body_sweeper_.sweep(x, 1.0, order_);
+      else
+        sweeper_.sweep(P, x);
+      ++total_;
+      if (it != 1 && it % check_ != 0) continue;
+      velocities(x, v);
+      const double e = natural_map_error(P, x, v);
+      if (!std::isfinite(e)) break;
+      keep(x, e);
+      own_best = std::min(own_best, e);
+      *reached = own_best;
+      if (best_err_ <= tol_) return rate;
+      const double now = seconds_since(s0);
+      hist.push_back({now, own_best});
+      if (seconds > 0 && now >= seconds) return rate;
+      // The rate over the last window (about 4 checks, at least 2): ln(error) per second.
+      const std::size_t h = hist.size();
+      if (h < 3) continue;
+      const Check& a = hist[h > 5 ? h - 5 : 1];
+      const Check& b = hist[h - 1];
+      rate = b.t > a.t ? std::log(a.err / b.err) / (b.t - a.t) : 0;
+      const double remaining = rate > 0 ? std::log(b.err / tol_) / rate : std::numeric_limits<double>::infinity();
+      if (first) {
+        // Stay while finishing costs less than what has been spent (a switch could not
+        // save more than that) or than another member's remembered time.
+        const double total_elapsed = seconds_since(t0);
+        const double other = other_per_contact_ * static_cast<double>(nc);
+        if (remaining > std::max(total_elapsed, other)) return rate;
+      } else if (h >= 6 && !(b.err < 0.9 * hist[h - 6].err)) {
+        return rate;  // a later slice that stalls gives its time back
+      }
+    }
+    return rate;
+  }
+
+  /// One slice of `who` from x (its iterate on exit), at most `seconds`. `reached`: the
+  /// lowest error of the slice; returns NLGS's window rate (0 for the others).
+  double run_member(Member who, Eigen::VectorXd& x, double seconds, double* reached) {
+    const long budget = std::max<long>(1, max_it_ - total_);
+    Eigen::VectorXd v;
+    SolverReport s;
+    switch (who) {
+      case nlgs_member:
+        return run_nlgs(x, budget, seconds, Clock::now(), false, reached);
+      case newton_member: {
+        newton::Options o;
+        o.tolerance = tol_;
+        o.max_iterations = budget;
+        o.max_seconds = seconds;
+        s = newton_.solve(with_w(), o, x, v);
+        break;
+      }
+      case admm_member: {
+        admm::Options o;
+        o.tolerance = tol_;
+        o.max_iterations = budget;
+        o.max_seconds = seconds;
+        s = admm_.solve(with_w(), o, x, v);
+        break;
+      }
+      case apgd_member: {
+        apgd::Options o;
+        o.tolerance = tol_;
+        o.max_iterations = budget;
+        o.max_seconds = seconds;
+        s = apgd::solve(*P_, o, x, v);  // through the factor when W was not given
+        break;
+      }
+      default:
+        *reached = best_err_;
+        return 0;
+    }
+    total_ += std::max<long>(s.iterations, 1);
+    keep(x, s.error);
+    *reached = s.error;
+    return 0;
+  }
+
+  /// Books a slice: its time and the rate it showed (ln of the error gained per second).
+  static void account(MemberState& ms, double took, double rate) {
+    ms.spent += took;
+    ++ms.slices;
+    ms.rate = std::max(rate, 0.0);
+  }
+
+  /// The next member: the one whose last rate finishes soonest; but while that one would
+  /// not finish within the time already spent, an untried member first, then one that has
+  /// had under a quarter of the time. −1 when every member is excluded (two slices in a
+  /// row without gain).
+  int next_member(const std::array<MemberState, member_count>& m, double elapsed) const {
+    int best = -1;
+    for (int k = 0; k < member_count; ++k) {
+      if (m[k].excluded() || m[k].slices == 0) continue;
+      if (best < 0 || m[k].rate > m[best].rate) best = k;
+    }
+    const double remaining = best >= 0 && m[best].rate > 0 ? std::log(best_err_ / tol_) / m[best].rate
+                                                            : std::numeric_limits<double>::infinity();
+    exploring_ = -1;
+    if (remaining > elapsed) {
+      for (int k = 0; k < member_count; ++k)
+        if (!m[k].excluded() && m[k].slices == 0) return exploring_ = k;
+      int least = -1;
+      for (int k = 0; k < member_count; ++k)
+        if (!m[k].excluded() && k != best && m[k].spent < 0.2 * elapsed && (least < 0 || m[k].spent < m[least].spent)) least = k;
+      if (least >= 0) return exploring_ = least;
+    }
+    return best;
+  }
+
+  /// Seconds per contact the members other than NLGS take (exponential average of the
+  /// times to converge; a slice that did not converge is a lower bound). The first NLGS
+  /// stage of later solves stays as long as it finishes sooner than that.
+  void remember_other(Member who, double seconds, Eigen::Index nc, bool converged) {
+    if (who == nlgs_member) return;
+    const double per = seconds / static_cast<double>(std::max<Eigen::Index>(nc, 1));
+    if (converged)
+      other_per_contact_ = other_per_contact_ > 0 ? 0.7 * other_per_contact_ + 0.3 * per : per;
+    else
+      other_per_contact_ = std::max(other_per_contact_, per);
+  }
+
+  mutable int exploring_ = -1;  ///< the member next_member() picked to measure, not for its rate
+  bool trace_ = std::getenv("MOREAU_AUTO_TRACE") != nullptr;
   double tol_;
-  long max_it_, nlgs_sweeps_, stall_sweeps_, newton_it_, newton_stall_, admm_it_, admm_stall_, direct_max_contacts_, apgd_it_;
+  long max_it_, nlgs_sweeps_, check_, direct_max_contacts_;
+  // Per solve.
+  const LocalProblem* P_ = nullptr;
+  bool bodies_ = false;
+  Eigen::VectorXd best_;
+  double best_err_ = 0;
+  long total_ = 0;
+  LocalProblem assembled_;
+  bool assembled_ready_ = false;
+  std::vector<Eigen::Index> order_;
+  // Kept over the solves of a run.
+  double other_per_contact_ = 0;
   nlgs::Sweeper sweeper_;
   nlgs::BodySweeper body_sweeper_;
   admm::Admm admm_;

@@ -1,5 +1,7 @@
 #include "newton_core.hpp"
 
+#include "../deadline.hpp"
+
 #include <algorithm>
 #include <cmath>
 #include <deque>
@@ -121,6 +123,7 @@ SolverReport Newton::solve(const LocalProblem& P, const Options& o, Eigen::Vecto
   std::deque<double> merits;
   std::vector<double> best_hist;
   bool analysed = false;
+  const Deadline deadline(o.max_seconds);
   Eigen::Index pattern_nnz = -1;
   for (long it = 1; it <= o.max_iterations && err > o.tolerance; ++it) {
     rep.iterations = it;
@@ -197,6 +200,7 @@ SolverReport Newton::solve(const LocalProblem& P, const Options& o, Eigen::Vecto
       const auto h = static_cast<long>(best_hist.size());
       if (h > o.stall_window && best_err > o.stall_factor * best_hist[h - 1 - o.stall_window]) break;
     }
+    if (deadline.passed()) break;
   }
   r = best;
   u = P.W * r + P.q;

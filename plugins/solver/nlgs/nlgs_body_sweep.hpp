@@ -33,9 +33,10 @@ class BodySweeper {
   /// u = q + H Δv with Δv recomputed from r (increments accumulated over many sweeps
   /// would drift by rounding; the error check must see the true u = W r + q).
   void velocities(const Eigen::VectorXd& r, Eigen::VectorXd& u);
+  /// Sets Δv from another r (records kept): sweeps then continue from that r.
+  void reset_velocities(const Eigen::VectorXd& r);
 
  private:
-  void reset_velocities(const Eigen::VectorXd& r);
   int d_ = 3, k_ = 6;         ///< the problem's: contact dimension, unknowns per body
   int pd_ = 3, pk_ = 6;       ///< packed: rows kept per contact (d, or 1 frictionless), columns per body
   bool iso_ = false;          ///< every moving body's M⁻¹ is one scalar per block: records keep those, not G

@@ -55,7 +55,6 @@ class Prox : public Solver {
     double err = natural_map_error(P, r, u);
     double best_err = err;
     Eigen::VectorXd best = r;
-    const double qn = P.q.norm() > 0 ? P.q.norm() : 1.0;
     double sigma_start = sigma0_ * std::max(P.W.diagonal().cwiseAbs().mean(), 1e-300);
     const double err_start = err;
     double sigma = sigma_start, last_err = err;
@@ -63,6 +62,7 @@ class Prox : public Solver {
     LocalProblem R;  // the regularised problem; W rebuilt only when σ changes
     R.dim = d;
     R.mu = P.mu;
+    R.error_scale = error_denominator(P);  // inner errors in the outer problem's normalisation
     long total = 0;
     for (long outer = 0; outer < max_outer_ && total < max_it_ && best_err > tol_; ++outer) {
       if (sigma != built_sigma) {
@@ -73,8 +73,8 @@ class Prox : public Solver {
         if (inner_ == "nlgs") sweeper_.prepare(R);
       }
       R.q = P.q - sigma * r;
-      // Inner target: a tenth of the outer error, in the inner problem's normalisation.
-      const double inner_tol = std::max(0.1 * last_err * qn, 0.1 * tol_ * qn) / std::max(R.q.norm(), 1e-300);
+      // Inner target: a tenth of the outer error (both measured with the same denominator).
+      const double inner_tol = std::max(0.1 * last_err, 0.1 * tol_);
       total += inner_solve(R, r, inner_tol, std::min<long>(inner_it_, max_it_ - total));
       u = P.W * r + P.q;
       err = natural_map_error(P, r, u);

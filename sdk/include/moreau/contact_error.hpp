@@ -2,7 +2,8 @@
 // The one error measure of DESIGN §1, used by every solver's stopping test, the
 // benchmarks and the FCLib comparisons: the normalised natural-map residual
 //   err(r) = sqrt(Σ_α ‖r_α − P_Kμ(r_α − ũ_α)‖²) / ‖q‖   (‖q‖ = 0: divide by 1),
-// with ũ_α = u_α + μ‖u_T,α‖ e_n. Always recomputed from r.
+// with ũ_α = u_α + μ‖u_T,α‖ e_n. Always recomputed from r. In a time step the denominator
+// is LocalProblem::error_scale instead (the contacts that approach; docs/solvers.md).
 #include <cmath>
 #include <moreau/contact_problem.hpp>
 
@@ -35,14 +36,20 @@ inline double contact_natural_map_squared(int d, double mu, const double* ra, co
   return sum;
 }
 
+/// The error's denominator: LocalProblem::error_scale when set (time-stepping), else ‖q‖
+/// (the FCLib measure); 1 when that is 0.
+inline double error_denominator(const LocalProblem& p) {
+  const double s = p.error_scale > 0 ? p.error_scale : p.q.norm();
+  return s > 0 ? s : 1.0;
+}
+
 /// err(r) for u = W r + q already computed.
 inline double natural_map_error(const LocalProblem& p, const Eigen::VectorXd& r, const Eigen::VectorXd& u) {
   const int d = p.dim;
   double sum = 0;
   for (Eigen::Index a = 0; a < p.contacts(); ++a)
     sum += contact_natural_map_squared(d, p.mu[a], r.data() + a * d, u.data() + a * d);
-  const double nq = p.q.norm();
-  return std::sqrt(sum) / (nq > 0 ? nq : 1.0);
+  return std::sqrt(sum) / error_denominator(p);
 }
 
 inline double natural_map_error(const LocalProblem& p, const Eigen::VectorXd& r) {

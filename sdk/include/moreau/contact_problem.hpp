@@ -33,6 +33,10 @@ struct LocalProblem {
   Eigen::VectorXd q;                                  ///< dim·nc
   Eigen::VectorXd mu;                                 ///< nc
   BodyFactor factor;                                  ///< optional, W = H M⁻¹ Hᵀ (see above)
+  /// Denominator of the error (contact_error.hpp), in the units of q (m/s); 0: ‖q‖, the
+  /// FCLib measure. The time-stepper sets it from the contacts that approach during the
+  /// step, so that open contacts (whose q holds gap/h) do not loosen the stopping test.
+  double error_scale = 0;
   Eigen::Index contacts() const { return mu.size(); }
 };
 

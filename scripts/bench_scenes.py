@@ -1,0 +1,118 @@
+#!/usr/bin/env python3
+"""Time stepping (issue 15, point 3): `auto` against each member solver on every example
+scene of configs/ that has contacts and on the silo of issue 15, per step.
+
+Each scene runs with its own solver tolerance (the default's when it names none) for every
+solver in --solvers; `auto` uses the same tolerance. Runs are interleaved (round r runs
+every solver once before round r + 1) and the table gives medians over --repeat rounds of
+the solve stage's seconds per step (from `moreau run`'s stage table), the steps whose solve
+missed the tolerance (from the end-of-run summary), and auto over the best member.
+
+    python3 scripts/bench_scenes.py [--moreau build/bin/moreau] [--steps 1000] [--repeat 3]
+        [--solvers auto nlgs newton admm apgd] [--only NAME ...] [--out build/bench_scenes]
+"""
+import argparse
+import json
+import os
+import re
+import statistics
+import subprocess
+import sys
+import tempfile
+
+HERE = os.path.dirname(os.path.abspath(__file__))
+REPO = os.path.dirname(HERE)
+sys.path.insert(0, HERE)
+import corpus  # noqa: E402  (the silo scene)
+
+DEFAULT_TOLERANCE = 1e-4  # auto's default (docs/solvers.md)
+
+
+def scenes(steps):
+    out = {}
+    cfg = os.path.join(REPO, "configs")
+    for f in sorted(os.listdir(cfg)):
+        if f.endswith(".json"):
+            s = json.load(open(os.path.join(cfg, f)))
+            if s.get("interactions"):
+                out[f[:-5]] = s
+    out["silo_2d"] = corpus.silo_2d(steps=5000)
+    for s in out.values():
+        s.pop("export_problems", None)
+        s["output"] = {"file": "out.h5", "every": 10 ** 9, "display": "points"}  # first and last frames only
+    return out
+
+
+def solver_block(scene, name):
+    sv = dict(scene.get("solver") or {})
+    tol = sv.get("tolerance", DEFAULT_TOLERANCE)
+    block = {"type": name, "tolerance": tol}
+    if name == "nlgs" and sv.get("type") == "nlgs" and "max_iterations" in sv:
+        block["max_iterations"] = sv["max_iterations"]
+    return block, tol
+
+
+def run(moreau, scene, name, steps, tmp):
+    s = json.loads(json.dumps(scene))
+    s["solver"], tol = solver_block(scene, name)
+    path = os.path.join(tmp, "scene.json")
+    json.dump(s, open(path, "w"))
+    total = round(s["time"]["duration"] / s["time"]["step"])
+    n = min(steps, total)
+    p = subprocess.run([moreau, "run", path, "--out", os.path.join(tmp, "out.h5"), "--steps", str(n)],
+                       capture_output=True, text=True)
+    if p.returncode != 0:
+        return {"error": p.stderr.strip().splitlines()[-1] if p.stderr.strip() else f"exit {p.returncode}"}
+    text = p.stdout + p.stderr
+    stages = {m.group(1): float(m.group(2)) for m in re.finditer(r"^\s+(\w+)\s+([0-9.]+) s", text, re.M)}
+    miss = re.search(r"contact solves: (\d+) of (\d+) steps ended above", text)
+    worst = re.search(r"worst error ([0-9.e+-]+)", text)
+    return {"solve": stages.get("solve", 0.0) / n, "total": stages.get("total", 0.0) / n, "steps": n, "tol": tol,
+            "misses": int(miss.group(1)) if miss else 0, "worst": float(worst.group(1)) if worst else 0.0}
+
+
+def main():
+    ap = argparse.ArgumentParser(description=__doc__.split("\n\n")[0], formatter_class=argparse.RawDescriptionHelpFormatter)
+    ap.add_argument("--moreau", default=os.path.join(REPO, "build", "bin", "moreau"))
+    ap.add_argument("--steps", type=int, default=1000, help="steps per run (at most the scene's own)")
+    ap.add_argument("--repeat", type=int, default=3)
+    ap.add_argument("--solvers", nargs="+", default=["auto", "nlgs", "newton", "admm", "apgd"])
+    ap.add_argument("--only", nargs="+", metavar="NAME")
+    ap.add_argument("--out", default=os.path.join(REPO, "build", "bench_scenes"))
+    a = ap.parse_args()
+    moreau = os.path.abspath(a.moreau)
+    all_scenes = scenes(a.steps)
+    names = a.only or list(all_scenes)
+    os.makedirs(a.out, exist_ok=True)
+    rows = []
+    hdr = f"{'scene':24s} {'tol':>7s} {'steps':>5s} " + " ".join(f"{s + ' ms':>12s}" for s in a.solvers) + \
+          f" {'best member':>12s} {'auto/best':>9s}  misses"
+    print(hdr, flush=True)
+    with tempfile.TemporaryDirectory() as tmp:
+        for name in names:
+            results = {s: [] for s in a.solvers}
+            for _ in range(a.repeat):  # interleaved: each round runs every solver once
+                for sv in a.solvers:
+                    results[sv].append(run(moreau, all_scenes[name], sv, a.steps, tmp))
+            med, misses = {}, {}
+            for sv, rs in results.items():
+                good = [r for r in rs if "error" not in r]
+                med[sv] = statistics.median(r["solve"] for r in good) if good else None
+                misses[sv] = (good[0]["misses"], good[0]["worst"]) if good else None
+            members = {sv: t for sv, t in med.items() if sv != "auto" and t is not None and misses[sv][0] == 0}
+            best = min(members, key=members.get) if members else None
+            ratio = med["auto"] / members[best] if best and med.get("auto") else None
+            first = next(r for rs in results.values() for r in rs if "error" not in r)
+            cells = " ".join(f"{'fail' if med[s] is None else f'{1e3 * med[s]:.3f}':>12s}" for s in a.solvers)
+            miss_txt = ", ".join(f"{s} {m[0]} (worst {m[1]:.1e})" for s, m in misses.items() if m and m[0])
+            print(f"{name:24s} {first['tol']:7.0e} {first['steps']:5d} {cells} {best or '-':>12s} "
+                  f"{'-' if ratio is None else f'{ratio:.2f}':>9s}  {miss_txt}", flush=True)
+            rows.append({"scene": name, "tolerance": first["tol"], "steps": first["steps"],
+                         "ms_per_step": {s: None if t is None else 1e3 * t for s, t in med.items()},
+                         "misses": {s: m for s, m in misses.items()}, "best_member": best, "auto_over_best": ratio})
+    json.dump(rows, open(os.path.join(a.out, "bench_scenes.json"), "w"), indent=1)
+    print(f"wrote {a.out}/bench_scenes.json")
+
+
+if __name__ == "__main__":
+    main()
