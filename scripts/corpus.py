@@ -73,7 +73,7 @@ def disks_2d(n, mu, seed, dense=True, r=0.005, steps=600, h=5e-4):
     forms), loose: spread out and thrown (few contacts per grain)."""
     rng = random.Random(seed)
     cols = max(4, int(math.sqrt(n) * (1.0 if dense else 2.0)))
-    pitch = 2.2 * r if dense else 4.0 * r
+    pitch = 2.5 * r if dense else 4.0 * r  # radii up to 1.1 r, jitter 0.1 r: no initial overlap
     width = cols * pitch
     rows = math.ceil(n / cols)
     bodies = walls_2d(width, rows * pitch + 0.1)
@@ -81,7 +81,7 @@ def disks_2d(n, mu, seed, dense=True, r=0.005, steps=600, h=5e-4):
         i, j = k % cols, k // cols
         bodies.append({"name": f"d{k}", "material": "grain",
                        "position": [round(-width / 2 + (i + 0.5) * pitch + rng.uniform(-0.1, 0.1) * r, 7),
-                                    round(r * 1.05 + j * pitch, 7)],
+                                    round(r * 1.2 + j * pitch, 7)],
                        "velocity": [round(rng.uniform(-0.05, 0.05), 4), 0 if dense else round(rng.uniform(-0.5, 0), 4)],
                        "contactors": [{"shape": "disk", "radius": round(r * rng.uniform(0.9, 1.1), 7), "group": "grain"}]})
     return scene(2, h, steps, bodies, mu, mu, alert=0.2 * r, export=[5, steps])
@@ -92,14 +92,14 @@ def silo_2d(steps=1500, seed=15):
     h = 2e-4 (about 950 contacts once settled)."""
     rng = random.Random(seed)
     r, n, cols = 0.0015, 405, 15
-    pitch = 2.3 * r
+    pitch = 2.5 * r
     width = cols * pitch
     bodies = walls_2d(width, 0.2, thickness=0.002)
     for k in range(n):
         i, j = k % cols, k // cols
         bodies.append({"name": f"g{k}", "material": "grain",
                        "position": [round(-width / 2 + (i + 0.5) * pitch + rng.uniform(-0.1, 0.1) * r, 7),
-                                    round(r * 1.1 + j * pitch, 7)],
+                                    round(r * 1.2 + j * pitch, 7)],
                        "contactors": [{"shape": "disk", "radius": round(r * rng.uniform(0.9, 1.1), 7), "group": "grain"}]})
     return scene(2, 2e-4, steps, bodies, 0.25, 0.25, export=[10, steps])
 

@@ -1,6 +1,6 @@
 #include "admm_core.hpp"
 
-#include "../deadline.hpp"
+#include "../work.hpp"
 
 #include <algorithm>
 #include <cmath>
@@ -34,16 +34,28 @@ void de_saxce(const LocalProblem& P, const Eigen::VectorXd& u, Eigen::VectorXd& 
 bool Admm::factorise(double rho) {
   ++factorisations_;
   Eigen::SparseMatrix<double> A = W_ + rho * D_;
+  const double n = static_cast<double>(A.rows()), unit = std::max<double>(1.0, static_cast<double>(W_.nonZeros()));
+  bool ok;
+  double nl, nu;
   if (symmetric_) {
     if (!analysed_) ldlt_.analyzePattern(A);
     analysed_ = true;
     ldlt_.factorize(A);
-    return ldlt_.info() == Eigen::Success;
+    ok = ldlt_.info() == Eigen::Success;
+    nl = nu = ok ? static_cast<double>(ldlt_.matrixL().nestedExpression().nonZeros()) : 0.0;
+  } else {
+    if (!analysed_) lu_.analyzePattern(A);
+    analysed_ = true;
+    lu_.factorize(A);
+    ok = lu_.info() == Eigen::Success;
+    nl = ok ? static_cast<double>(lu_.nnzL()) : 0.0;
+    nu = ok ? static_cast<double>(lu_.nnzU()) : 0.0;
   }
-  if (!analysed_) lu_.analyzePattern(A);
-  analysed_ = true;
-  lu_.factorize(A);
-  return lu_.info() == Eigen::Success;
+  // Counted work (plugins/solver/work.hpp): the factorisation about nnz(L) nnz(U) / n,
+  // each later solve 2 (nnz(L) + nnz(U)), in products by W.
+  factorisation_units_ += nl * nu / std::max(n, 1.0) / unit;
+  solve_units_ = 2 * (nl + nu) / unit;
+  return ok;
 }
 
 void Admm::solve_linear(const Eigen::VectorXd& b, Eigen::VectorXd& x) {
@@ -56,6 +68,8 @@ SolverReport Admm::solve(const LocalProblem& P, const Options& o, Eigen::VectorX
   const Eigen::Index nc = P.contacts(), n = d * nc;
   SolverReport rep;
   factorisations_ = 0;
+  factorisation_units_ = 0;
+  WorkMeter meter(o.max_work, o.work);
   if (r.size() != n || !r.allFinite()) r = Eigen::VectorXd::Zero(n);
   if (nc == 0) {
     u = P.q;
@@ -99,7 +113,13 @@ SolverReport Admm::solve(const LocalProblem& P, const Options& o, Eigen::VectorX
 
   const Eigen::VectorXd sqrtD = D.cwiseSqrt();
   Eigen::VectorXd z(n), zk(n), zh(n), xi(n), xik(n), xih(n), s(n), rhs(n), x(n), best(n), tmp(n);
-  project_all(P, r, z);
+  const bool resuming = o.resume && state_.z.size() == n;
+  if (resuming) {
+    z = state_.z, zk = state_.zk, zh = state_.zh, xi = state_.xi, xik = state_.xik, xih = state_.xih, x = state_.x;
+    rho = state_.rho;
+  } else {
+    project_all(P, r, z);
+  }
   u = P.W * z + P.q;
   double err = natural_map_error(P, z, u);
   best = z;
@@ -110,23 +130,24 @@ SolverReport Admm::solve(const LocalProblem& P, const Options& o, Eigen::VectorX
     rep.converged = true;
     return rep;
   }
-  de_saxce(P, u, s);
-  // ξ at the fixed point of a converged start: W z + q + s = −ρ D ξ.
-  xi = -(u + s).cwiseQuotient(D) / rho;
-  zk = z;
-  xik = xi;
-  zh = z;
-  xih = xi;
-  x = z;  // r iterate
+  if (!resuming) {
+    de_saxce(P, u, s);
+    // ξ at the fixed point of a converged start: W z + q + s = −ρ D ξ.
+    xi = -(u + s).cwiseQuotient(D) / rho;
+    zk = z;
+    xik = xi;
+    zh = z;
+    xih = xi;
+    x = z;  // r iterate
+  }
   if (!factorise(rho)) {
     r = best;
     u = P.W * r + P.q;
     rep.error = natural_map_error(P, r, u);
     return rep;
   }
-  double tau_k = 1, e_k = INFINITY;
+  double tau_k = resuming ? state_.tau : 1, e_k = resuming ? state_.e : INFINITY;
   std::vector<double> best_hist;
-  const Deadline deadline(o.max_seconds);
   for (long it = 1; it <= o.max_iterations; ++it) {
     rep.iterations = it;
     tmp = P.W * x + P.q;  // the shift from the unprojected iterate, as Siconos does
@@ -153,7 +174,9 @@ SolverReport Admm::solve(const LocalProblem& P, const Options& o, Eigen::VectorX
       const auto h = static_cast<long>(best_hist.size());
       if (h > o.stall_window && best_err > o.stall_factor * best_hist[h - 1 - o.stall_window]) break;
     }
-    if (deadline.passed()) break;
+    meter.add(2 + solve_units_ + factorisation_units_);  // two products by W, the solves, new factorisations
+    factorisation_units_ = 0;
+    if (meter.exhausted()) break;
     const double e = primal * primal + dual * dual;
     if (o.acceleration && e < o.restart * e_k) {
       const double tau = 0.5 * (1 + std::sqrt(1 + 4 * tau_k * tau_k));
@@ -189,6 +212,7 @@ SolverReport Admm::solve(const LocalProblem& P, const Options& o, Eigen::VectorX
       }
     }
   }
+  state_ = State{z, zk, zh, xi, xik, xih, x, rho, tau_k, e_k};
   r = best;
   u = P.W * r + P.q;
   rep.error = natural_map_error(P, r, u);

@@ -33,8 +33,13 @@ struct Options {
   /// times its value of `stall_window` iterations before (0: never). Used by `auto`.
   long stall_window = 0;
   double stall_factor = 0.5;
-  /// Wall-clock limit of the solve in seconds (0: none), checked after each iteration. Used by `auto`.
-  double max_seconds = 0;
+  /// Work budget in products by W (0: none), checked after each iteration; the work done
+  /// is added to *work when given (plugins/solver/work.hpp). Used by `auto`.
+  double max_work = 0;
+  double* work = nullptr;
+  /// Continue the last solve's run (same problem): its iterates, penalty and extrapolation,
+  /// instead of starting from r. Used by `auto`, which runs ADMM in slices.
+  bool resume = false;
 };
 
 class Admm {
@@ -54,6 +59,12 @@ class Admm {
   Eigen::SparseLU<Eigen::SparseMatrix<double>> lu_;
   bool analysed_ = false;
   long factorisations_ = 0;
+  double factorisation_units_ = 0;  ///< work of the factorisations not yet counted
+  double solve_units_ = 0;          ///< work of one solve with the current factor
+  struct State {
+    Eigen::VectorXd z, zk, zh, xi, xik, xih, x;
+    double rho = 0, tau = 1, e = 0;
+  } state_;  ///< where the last solve stopped (Options::resume)
 };
 
 }  // namespace moreau::admm

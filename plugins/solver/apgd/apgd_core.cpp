@@ -1,6 +1,6 @@
 #include "apgd_core.hpp"
 
-#include "../deadline.hpp"
+#include "../work.hpp"
 
 #include <cmath>
 #include <moreau/contact_error.hpp>
@@ -103,13 +103,14 @@ SolverReport solve(const LocalProblem& P, const Options& o, Eigen::VectorXd& r, 
   double best_err = natural_map_error(P, x, u);
   best = x;
   double L = 1, theta = 1;
-  const Deadline deadline(o.max_seconds);
+  WorkMeter meter(o.max_work, o.work);
   for (long it = 1; it <= o.max_iterations && best_err > o.tolerance; ++it) {
     rep.iterations = it;
     g = Wy + P.q;
     de_saxce_add(P, g);
     bool ok = false;
-    for (int bt = 0; bt < 60; ++bt) {
+    int backtracks = 0;
+    for (int bt = 0; bt < 60; ++bt, ++backtracks) {
       tmp = y - (1 / L) * Dinv.cwiseProduct(g);
       project_all(P, tmp, xn);
       dl = xn - y;
@@ -143,7 +144,8 @@ SolverReport solve(const LocalProblem& P, const Options& o, Eigen::VectorXd& r, 
       best_err = e;
       best = x;
     }
-    if (deadline.passed()) break;
+    meter.add(1 + backtracks);  // one product by W, and one per backtrack
+    if (meter.exhausted()) break;
   }
   r = best;
   W.apply(r, u);

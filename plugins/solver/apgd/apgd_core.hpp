@@ -20,8 +20,10 @@ struct Options {
   long max_iterations = 10000;
   double shrink = 0.9;   ///< L ← shrink·L after each accepted step (1: never shrinks)
   bool restart = true;   ///< gradient restart of the extrapolation
-  /// Wall-clock limit of the solve in seconds (0: none), checked after each iteration. Used by `auto`.
-  double max_seconds = 0;
+  /// Work budget in products by W (0: none), checked after each iteration; the work done
+  /// is added to *work when given (plugins/solver/work.hpp). Used by `auto`.
+  double max_work = 0;
+  double* work = nullptr;
 };
 
 SolverReport solve(const LocalProblem& P, const Options& o, Eigen::VectorXd& r, Eigen::VectorXd& u);

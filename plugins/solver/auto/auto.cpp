@@ -1,30 +1,26 @@
 // `auto`: the solver to use when one does not know which. A portfolio of member methods
-// (NLGS; regularised semismooth Newton and ADMM when a factorisation of W fits; APGD when
-// it does not) that shares the time between them from what it measures while solving:
-// each member's progress per second (decades of error gained per second of its own
-// time), its cost per iteration, and the time a switch would cost.
+// (NLGS; regularised semismooth Newton, twice, and ADMM when a factorisation of W fits;
+// APGD when it does not) that shares the time between them from what it measures while
+// solving: each member's progress per second (ln of the error gained per second of its
+// own time) and the time the other members took on earlier problems of the run.
 //
 // 1. NLGS first, on exactly the `nlgs` schedule (error at sweep 1, then every
 //    `check_every` sweeps; through body velocities in the time-stepper): a warm-started
 //    step that NLGS finishes costs what `nlgs` costs. NLGS keeps going while its measured
-//    rate says it will finish within the time spent so far, or within what the best other
-//    member took on earlier problems of this run (per contact), whichever is larger.
-// 2. Otherwise the members take turns in time slices that double: each slice goes to the
-//    member that, from its last measured rate, would finish soonest, except that a member
-//    whose time is under a quarter of the total is tried first (so a member that looked
-//    bad once gets another chance, with a budget that grows with the solve). A slice
-//    starts from the best iterate so far; a member whose slice from the best gained
-//    nothing continues its own run from the warm start instead (Newton from NLGS's best
-//    can sit in a local minimum of its merit where Newton alone would not).
-// 3. The answer is the best iterate of all; the solve ends at the tolerance, at
-//    `max_iterations` (all members' iterations together), or when every member had two
-//    slices in a row without gain.
-// The time a member took to converge is remembered per contact, so in a run of many
-// steps the switch from NLGS happens at once where another member was faster before, and
-// never where it was not.
+//    rate says it will finish within the time spent so far, or within what the other
+//    members took on earlier problems of this run (per contact), whichever is larger.
+// 2. Otherwise the members take turns in time slices that double: the member whose last
+//    rate finishes soonest gets the time spent so far; while it would not finish within
+//    that, an untried member, or one that has had under a fifth of the time, gets a quarter
+//    of it first, to measure its rate. NLGS, APGD and the first Newton start from the
+//    best iterate; the second Newton and ADMM continue their own runs from the warm start,
+//    as each would alone (Newton from NLGS's iterate can crawl where alone it converges).
+// 3. The answer is the best iterate of all; the solve ends at the tolerance, when every
+//    member has used `max_iterations` of its own (Newton at most 200), or had three slices
+//    in a row that gained less than 1 %.
+// docs/solvers.md states the rule and the guarantee measured on the corpus.
 #include <algorithm>
 #include <array>
-#include <chrono>
 #include <cmath>
 #include <cstdio>
 #include <cstdlib>
@@ -42,31 +38,33 @@
 
 namespace {
 using namespace moreau;
-using Clock = std::chrono::steady_clock;
 
-double seconds_since(Clock::time_point t0) { return std::chrono::duration<double>(Clock::now() - t0).count(); }
 
-enum Member { nlgs_member, newton_member, admm_member, apgd_member, member_count };
+// Newton twice: from the best iterate (NLGS's, often close) and on its own run from the warm
+// start (from NLGS's iterate it can crawl where alone it converges fast).
+enum Member { nlgs_member, newton_member, newton_start_member, admm_member, apgd_member, member_count };
 
 /// What auto knows of one member during a solve.
 struct MemberState {
   bool available = false;
-  double spent = 0;         ///< seconds of this solve
-  double rate = -1;         ///< ln(error) gained per second in its last slice; −1: not tried
+  double spent = 0;         ///< work of this solve (products by W, plugins/solver/work.hpp)
+  double rate = -1;         ///< ln(error) gained per unit of work in its last slice; −1: not tried
   int slices = 0;
+  long iterations = 0;      ///< its own iterations (each member has `max_iterations`)
+  double per_iteration = 0; ///< measured work of one of its iterations
   int fruitless = 0;        ///< consecutive slices without gain
   bool own_run = false;     ///< continues its own iterate instead of starting from the best
   Eigen::VectorXd own;      ///< its own iterate (own_run)
   double own_err = std::numeric_limits<double>::infinity();
-  bool excluded() const { return !available || (slices >= 2 && fruitless >= 2); }
+  bool excluded(long max_it) const { return !available || iterations >= max_it || (slices >= 3 && fruitless >= 3); }
 };
 
 class Auto : public Solver {
  public:
   static Schema schema() {
     Schema s;
-    s.number("tolerance", "target error (DESIGN §1; in a time step normalised by the approaching contacts)").gt(0).fallback(1e-4);
-    s.integer("max_iterations", "maximum iterations of all members together (NLGS sweeps, Newton, ADMM and APGD steps)").min(1).fallback(20000);
+    s.number("tolerance", "target error (DESIGN §1; in a time step normalised by the approaching contacts)").gt(0).fallback(1e-3);
+    s.integer("max_iterations", "maximum iterations of each member (NLGS sweeps, Newton, ADMM or APGD steps)").min(1).fallback(20000);
     s.integer("nlgs_sweeps", "maximum sweeps of the first NLGS stage (0: start with the other members)").min(0).fallback(100000);
     s.integer("check_every", "NLGS sweeps between two evaluations of the error (as nlgs)").min(1).fallback(5);
     s.integer("direct_max_contacts", "above this many contacts, no sparse factorisation (Newton, ADMM): APGD instead").min(0).fallback(1000);
@@ -82,7 +80,6 @@ class Auto : public Solver {
   bool reads_matrix_with_factor() const override { return false; }
 
   SolverReport solve(const LocalProblem& P, Eigen::VectorXd& r, Eigen::VectorXd& u) override {
-    const Clock::time_point t0 = Clock::now();
     const int d = P.dim;
     const Eigen::Index nc = P.contacts(), n = d * nc;
     SolverReport rep;
@@ -100,6 +97,8 @@ class Auto : public Solver {
     best_ = r;
     best_err_ = std::numeric_limits<double>::infinity();
     total_ = 0;
+    work_ = 0;
+    admm_slices_ = 0;
     auto finish = [&]() {
       if (!std::isfinite(best_err_)) best_ = start;  // no iterate was ever evaluated
       r = best_;
@@ -114,25 +113,28 @@ class Auto : public Solver {
     std::array<MemberState, member_count> m;
     m[nlgs_member].available = true;
     m[newton_member].available = direct;
+    m[newton_start_member].available = direct;
     m[admm_member].available = direct;
     m[apgd_member].available = !direct;
     // Newton and ADMM follow their own runs from the warm start, as each would alone:
     // started from NLGS's iterate, Newton can crawl for hundreds of steps where alone it
     // converges in tens (measured on spheres-in-a-box at 1e-8: 0.36 s alone, 3.9 s from
     // the best iterate). NLGS and APGD, first-order methods, start from the best.
-    for (Member k : {newton_member, admm_member}) {
+    for (Member k : {newton_start_member, admm_member}) {
       m[k].own_run = true;
       m[k].own = r;
     }
 
     // 1. NLGS on the `nlgs` schedule, while its own rate says it finishes soon enough.
     if (nlgs_sweeps_ > 0) {
-      const double before = seconds_since(t0);
+      const double before = work_;
       double first_err = 0;
-      const double rate = run_nlgs(r, nlgs_sweeps_, 0, t0, true, &first_err);
-      if (trace_) std::fprintf(stderr, "auto: first nlgs %.2es best %.2e rate %.2e it %ld\n", seconds_since(t0) - before, best_err_, rate, total_);
+      const long before_it = total_;
+      const double rate = run_nlgs(r, std::min(nlgs_sweeps_, max_it_), 0, true, &first_err);
+      m[nlgs_member].iterations += total_ - before_it;
+      if (trace_) std::fprintf(stderr, "auto: first nlgs %.1f units, best %.2e, rate %.2e, it %ld\n", work_ - before, best_err_, rate, total_);
       if (best_err_ <= tol_) return finish();
-      account(m[nlgs_member], seconds_since(t0) - before, rate);
+      account(m[nlgs_member], work_ - before, rate);
     } else {
       velocities(r, u);
       keep(r, natural_map_error(P, r, u));
@@ -140,37 +142,48 @@ class Auto : public Solver {
     if (!std::isfinite(best_err_)) return finish();
 
     // 2. Slices that double, to the member expected to finish first.
-    while (best_err_ > tol_ && total_ < max_it_) {
-      const double elapsed = seconds_since(t0);
+    while (best_err_ > tol_) {
+      const double elapsed = work_;
       const int who = next_member(m, elapsed);
       if (who < 0) break;
       MemberState& ms = m[who];
-      // The member expected to finish first gets the time spent so far (slices double);
+      // The member expected to finish first gets the work spent so far (slices double);
       // a member tried to measure its rate gets a quarter of it.
-      const double slice = std::max((who == exploring_ ? 0.25 : 1.0) * elapsed, 1e-5);
+      // Either way at least 5 of its iterations: Newton's progress shows after a few.
+      const double slice = std::max({(who == exploring_ ? 0.25 : 1.0) * elapsed, 5 * ms.per_iteration, 4.0});
       if (ms.own_run && !std::isfinite(ms.own_err)) {  // its start's error, once (hard problems only)
         Eigen::VectorXd v = with_w().W * ms.own + P.q;
         ms.own_err = natural_map_error(P, ms.own, v);
+        work_ += 1;
       }
       Eigen::VectorXd x = ms.own_run ? ms.own : best_;
       const double from = ms.own_run ? ms.own_err : best_err_;
-      const double t_start = seconds_since(t0);
+      const double t_start = work_;
       double reached = 0;
-      const double window_rate = run_member(static_cast<Member>(who), x, slice, &reached);
-      const double took = seconds_since(t0) - t_start;
+      const long before_it = total_;
+      // Newton's first probe: 4 steps whatever their work (its progress shows after a few).
+      const bool newton = who == newton_member || who == newton_start_member;
+      const bool newton_probe = newton && ms.slices == 0;
+      const long member_max = newton ? std::min<long>(max_it_, 200) : max_it_;  // a Newton step costs a factorisation
+      const double window_rate = run_member(static_cast<Member>(who), x, newton_probe ? 0.0 : slice,
+                                            newton_probe ? std::min<long>(4, member_max - ms.iterations)
+                                                         : std::max<long>(1, member_max - ms.iterations), &reached);
+      ms.iterations += total_ - before_it;
+      if (total_ > before_it) ms.per_iteration = (work_ - t_start) / static_cast<double>(total_ - before_it);
+      const double took = work_ - t_start;
       if (best_err_ <= tol_) {
         remember_other(static_cast<Member>(who), took, nc, true);
         break;
       }
       remember_other(static_cast<Member>(who), took, nc, false);
       const double gain = reached < from ? std::log(from / reached) : 0.0;
-      if (trace_) std::fprintf(stderr, "auto: %.4fs member %d slice %.2es took %.2es from %.2e reached %.2e best %.2e own %d it %ld\n",
-                               seconds_since(t0), who, slice, took, from, reached, best_err_, int(ms.own_run), total_);
+      if (trace_) std::fprintf(stderr, "auto: at %.1f units, member %d, slice %.1f took %.1f, from %.2e reached %.2e, best %.2e, own %d, it %ld\n",
+                               work_, who, slice, took, from, reached, best_err_, int(ms.own_run), total_);
       account(ms, took, who == nlgs_member ? window_rate : gain / std::max(took, 1e-12));
-      if (gain < std::log(1 / 0.9)) ++ms.fruitless;
+      if (gain < std::log(1 / 0.99)) ++ms.fruitless;
       else ms.fruitless = 0;
       if (ms.own_run) {
-        ms.own = x;
+        ms.own = who == newton_start_member ? last_ : x;  // Newton resumes from its last step, not its best
         ms.own_err = std::min(ms.own_err, reached);
       }
     }
@@ -207,10 +220,10 @@ class Auto : public Solver {
   }
 
   /// NLGS sweeps from x (error at the first sweep, then every check_): until converged,
-  /// `max_sweeps`, the deadline (`seconds` > 0), or, for the first stage (`first`), until
+  /// `max_sweeps`, the work budget (`units` > 0), or, for the first stage (`first`), until
   /// its measured rate says another member would finish sooner. Returns its last measured
   /// rate (ln of the error per second; 0 when unknown); `reached`: its lowest error.
-  double run_nlgs(Eigen::VectorXd& x, long max_sweeps, double seconds, Clock::time_point t0, bool first, double* reached) {
+  double run_nlgs(Eigen::VectorXd& x, long max_sweeps, double units, bool first, double* reached) {
     const LocalProblem& P = *P_;
     const Eigen::Index nc = P.contacts();
     if (bodies_) {
@@ -222,7 +235,7 @@ class Auto : public Solver {
       order_.resize(static_cast<std::size_t>(nc));
       for (Eigen::Index a = 0; a < nc; ++a) order_[static_cast<std::size_t>(a)] = a;
     }
-    const Clock::time_point s0 = Clock::now();
+    const double w0 = work_;
     Eigen::VectorXd v;
     struct Check {
       double t, err;
@@ -230,23 +243,25 @@ class Auto : public Solver {
     std::vector<Check> hist;
     double own_best = std::numeric_limits<double>::infinity(), rate = 0;
     *reached = own_best;
-    for (long it = 1; it <= max_sweeps && total_ < max_it_; ++it) {
+    for (long it = 1; it <= max_sweeps; ++it) {
       if (bodies_)
         body_sweeper_.sweep(x, 1.0, order_);
       else
         sweeper_.sweep(P, x);
       ++total_;
+      work_ += 1;  // a sweep reads each contact's data once: about a product by W
       if (it != 1 && it % check_ != 0) continue;
       velocities(x, v);
+      work_ += 1;
       const double e = natural_map_error(P, x, v);
       if (!std::isfinite(e)) break;
       keep(x, e);
       own_best = std::min(own_best, e);
       *reached = own_best;
       if (best_err_ <= tol_) return rate;
-      const double now = seconds_since(s0);
+      const double now = work_ - w0;
       hist.push_back({now, own_best});
-      if (seconds > 0 && now >= seconds) return rate;
+      if (units > 0 && now >= units) return rate;
       // The rate over the last window (about 4 checks, at least 2): ln(error) per second.
       const std::size_t h = hist.size();
       if (h < 3) continue;
@@ -257,8 +272,8 @@ class Auto : public Solver {
       if (first) {
         // Stay while finishing costs less than what has been spent (a switch could not
         // save more than that) or than another member's remembered time.
-        const double total_elapsed = seconds_since(t0);
-        const double other = other_per_contact_ * static_cast<double>(nc);
+        const double total_elapsed = work_;
+        const double other = other_work_;
         if (remaining > std::max(total_elapsed, other)) return rate;
       } else if (h >= 6 && !(b.err < 0.9 * hist[h - 6].err)) {
         return rate;  // a later slice that stalls gives its time back
@@ -267,20 +282,22 @@ class Auto : public Solver {
     return rate;
   }
 
-  /// One slice of `who` from x (its iterate on exit), at most `seconds`. `reached`: the
+  /// One slice of `who` from x (its iterate on exit), at most `units` of work. `reached`: the
   /// lowest error of the slice; returns NLGS's window rate (0 for the others).
-  double run_member(Member who, Eigen::VectorXd& x, double seconds, double* reached) {
-    const long budget = std::max<long>(1, max_it_ - total_);
+  double run_member(Member who, Eigen::VectorXd& x, double units, long budget, double* reached) {
     Eigen::VectorXd v;
     SolverReport s;
     switch (who) {
       case nlgs_member:
-        return run_nlgs(x, budget, seconds, Clock::now(), false, reached);
-      case newton_member: {
+        return run_nlgs(x, budget, units, false, reached);
+      case newton_member:
+      case newton_start_member: {
         newton::Options o;
         o.tolerance = tol_;
         o.max_iterations = budget;
-        o.max_seconds = seconds;
+        o.max_work = units;
+        o.work = &work_;
+        o.last = &last_;
         s = newton_.solve(with_w(), o, x, v);
         break;
       }
@@ -288,7 +305,9 @@ class Auto : public Solver {
         admm::Options o;
         o.tolerance = tol_;
         o.max_iterations = budget;
-        o.max_seconds = seconds;
+        o.max_work = units;
+        o.work = &work_;
+        o.resume = admm_slices_++ > 0;  // its own run goes on where its last slice stopped
         s = admm_.solve(with_w(), o, x, v);
         break;
       }
@@ -296,7 +315,8 @@ class Auto : public Solver {
         apgd::Options o;
         o.tolerance = tol_;
         o.max_iterations = budget;
-        o.max_seconds = seconds;
+        o.max_work = units;
+        o.work = &work_;
         s = apgd::solve(*P_, o, x, v);  // through the factor when W was not given
         break;
       }
@@ -319,12 +339,12 @@ class Auto : public Solver {
 
   /// The next member: the one whose last rate finishes soonest; but while that one would
   /// not finish within the time already spent, an untried member first, then one that has
-  /// had under a quarter of the time. −1 when every member is excluded (two slices in a
+  /// had under a fifth of the time. −1 when every member is excluded (three slices in a
   /// row without gain).
   int next_member(const std::array<MemberState, member_count>& m, double elapsed) const {
     int best = -1;
     for (int k = 0; k < member_count; ++k) {
-      if (m[k].excluded() || m[k].slices == 0) continue;
+      if (m[k].excluded(k == newton_member || k == newton_start_member ? std::min<long>(max_it_, 200) : max_it_) || m[k].slices == 0) continue;
       if (best < 0 || m[k].rate > m[best].rate) best = k;
     }
     const double remaining = best >= 0 && m[best].rate > 0 ? std::log(best_err_ / tol_) / m[best].rate
@@ -332,25 +352,26 @@ class Auto : public Solver {
     exploring_ = -1;
     if (remaining > elapsed) {
       for (int k = 0; k < member_count; ++k)
-        if (!m[k].excluded() && m[k].slices == 0) return exploring_ = k;
+        if (!m[k].excluded(k == newton_member || k == newton_start_member ? std::min<long>(max_it_, 200) : max_it_) && m[k].slices == 0) return exploring_ = k;
       int least = -1;
       for (int k = 0; k < member_count; ++k)
-        if (!m[k].excluded() && k != best && m[k].spent < 0.2 * elapsed && (least < 0 || m[k].spent < m[least].spent)) least = k;
+        if (!m[k].excluded(k == newton_member || k == newton_start_member ? std::min<long>(max_it_, 200) : max_it_) && k != best && m[k].spent < 0.2 * elapsed && (least < 0 || m[k].spent < m[least].spent)) least = k;
       if (least >= 0) return exploring_ = least;
     }
     return best;
   }
 
-  /// Seconds per contact the members other than NLGS take (exponential average of the
-  /// times to converge; a slice that did not converge is a lower bound). The first NLGS
-  /// stage of later solves stays as long as it finishes sooner than that.
-  void remember_other(Member who, double seconds, Eigen::Index nc, bool converged) {
+  /// Work the members other than NLGS take to converge (exponential average; a slice that
+  /// did not converge is a lower bound). The first NLGS stage of later solves stays as
+  /// long as it finishes with less work than that.
+  void remember_other(Member who, double units, Eigen::Index nc, bool converged) {
     if (who == nlgs_member) return;
-    const double per = seconds / static_cast<double>(std::max<Eigen::Index>(nc, 1));
+    const double per = units;  // work units are already relative to the problem's size
+    (void)nc;
     if (converged)
-      other_per_contact_ = other_per_contact_ > 0 ? 0.7 * other_per_contact_ + 0.3 * per : per;
+      other_work_ = other_work_ > 0 ? 0.7 * other_work_ + 0.3 * per : per;
     else
-      other_per_contact_ = std::max(other_per_contact_, per);
+      other_work_ = std::max(other_work_, per);
   }
 
   mutable int exploring_ = -1;  ///< the member next_member() picked to measure, not for its rate
@@ -363,11 +384,14 @@ class Auto : public Solver {
   Eigen::VectorXd best_;
   double best_err_ = 0;
   long total_ = 0;
+  double work_ = 0;
+  Eigen::VectorXd last_;  ///< Newton's last iterate of its last slice
+  int admm_slices_ = 0;   ///< ADMM slices of this solve (the later ones resume its run)  ///< work of this solve, in products by W (deterministic, plugins/solver/work.hpp)
   LocalProblem assembled_;
   bool assembled_ready_ = false;
   std::vector<Eigen::Index> order_;
   // Kept over the solves of a run.
-  double other_per_contact_ = 0;
+  double other_work_ = 0;
   nlgs::Sweeper sweeper_;
   nlgs::BodySweeper body_sweeper_;
   admm::Admm admm_;

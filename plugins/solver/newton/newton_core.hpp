@@ -30,8 +30,12 @@ struct Options {
   /// times its value of `stall_window` iterations before (0: never). Used by `auto`.
   long stall_window = 0;
   double stall_factor = 0.5;
-  /// Wall-clock limit of the solve in seconds (0: none), checked after each iteration. Used by `auto`.
-  double max_seconds = 0;
+  /// Work budget in products by W (0: none), checked after each iteration; the work done
+  /// is added to *work when given (plugins/solver/work.hpp). Used by `auto`.
+  double max_work = 0;
+  double* work = nullptr;
+  /// When given, receives the last iterate (r receives the best): `auto` resumes a run from it.
+  Eigen::VectorXd* last = nullptr;
 };
 
 class Newton {
