@@ -9,7 +9,7 @@ the solve stage's seconds per step (from `moreau run`'s stage table), the steps 
 missed the tolerance (from the end-of-run summary), and auto over the best member.
 
     python3 scripts/bench_scenes.py [--moreau build/bin/moreau] [--steps 1000] [--repeat 3]
-        [--solvers auto nlgs newton admm apgd] [--only NAME ...] [--out build/bench_scenes]
+        [--solvers auto nlgs newton admm apgd] [--only NAME ...] [--tolerance X] [--out build/bench_scenes]
 """
 import argparse
 import json
@@ -43,18 +43,18 @@ def scenes(steps):
     return out
 
 
-def solver_block(scene, name):
+def solver_block(scene, name, tolerance=None):
     sv = dict(scene.get("solver") or {})
-    tol = sv.get("tolerance", DEFAULT_TOLERANCE)
+    tol = tolerance or sv.get("tolerance", DEFAULT_TOLERANCE)
     block = {"type": name, "tolerance": tol}
     if name == "nlgs" and sv.get("type") == "nlgs" and "max_iterations" in sv:
         block["max_iterations"] = sv["max_iterations"]
     return block, tol
 
 
-def run(moreau, scene, name, steps, tmp):
+def run(moreau, scene, name, steps, tmp, tolerance=None):
     s = json.loads(json.dumps(scene))
-    s["solver"], tol = solver_block(scene, name)
+    s["solver"], tol = solver_block(scene, name, tolerance)
     path = os.path.join(tmp, "scene.json")
     json.dump(s, open(path, "w"))
     total = round(s["time"]["duration"] / s["time"]["step"])
@@ -78,6 +78,7 @@ def main():
     ap.add_argument("--repeat", type=int, default=3)
     ap.add_argument("--solvers", nargs="+", default=["auto", "nlgs", "newton", "admm", "apgd"])
     ap.add_argument("--only", nargs="+", metavar="NAME")
+    ap.add_argument("--tolerance", type=float, help="one tolerance for every scene (default: each scene's own)")
     ap.add_argument("--out", default=os.path.join(REPO, "build", "bench_scenes"))
     a = ap.parse_args()
     moreau = os.path.abspath(a.moreau)
@@ -93,7 +94,7 @@ def main():
             results = {s: [] for s in a.solvers}
             for _ in range(a.repeat):  # interleaved: each round runs every solver once
                 for sv in a.solvers:
-                    results[sv].append(run(moreau, all_scenes[name], sv, a.steps, tmp))
+                    results[sv].append(run(moreau, all_scenes[name], sv, a.steps, tmp, a.tolerance))
             med, misses = {}, {}
             for sv, rs in results.items():
                 good = [r for r in rs if "error" not in r]

@@ -175,7 +175,9 @@ class Auto : public Solver {
         remember_other(static_cast<Member>(who), took, nc, true);
         break;
       }
-      remember_other(static_cast<Member>(who), took, nc, false);
+      // Not converged: its work to converge, extrapolated at the rate it showed, bounds it.
+      const double need = reached < from && reached > tol_ ? took * std::log(from / tol_) / std::log(from / reached) : 4 * took;
+      remember_other(static_cast<Member>(who), std::min(need, 4 * took), nc, false);
       const double gain = reached < from ? std::log(from / reached) : 0.0;
       if (trace_) std::fprintf(stderr, "auto: at %.1f units, member %d, slice %.1f took %.1f, from %.2e reached %.2e, best %.2e, own %d, it %ld\n",
                                work_, who, slice, took, from, reached, best_err_, int(ms.own_run), total_);
@@ -270,11 +272,12 @@ class Auto : public Solver {
       rate = b.t > a.t ? std::log(a.err / b.err) / (b.t - a.t) : 0;
       const double remaining = rate > 0 ? std::log(b.err / tol_) / rate : std::numeric_limits<double>::infinity();
       if (first) {
-        // Stay while finishing costs less than what has been spent (a switch could not
-        // save more than that) or than another member's remembered time.
+        // Stay while finishing costs less than twice what has been spent (a switch could
+        // not save more than that) or twice another member's remembered work: the factor
+        // keeps warm-started steps that NLGS finishes from paying for a probe.
         const double total_elapsed = work_;
         const double other = other_work_;
-        if (remaining > std::max(total_elapsed, other)) return rate;
+        if (remaining > 2 * std::max(total_elapsed, other)) return rate;
       } else if (h >= 6 && !(b.err < 0.9 * hist[h - 6].err)) {
         return rate;  // a later slice that stalls gives its time back
       }
