@@ -20,8 +20,8 @@ import h5py
 def solver(variant):
     """`w` / `bodies`: nlgs with that exchange, 200 sweeps at most; `auto`: the default solver.
     All at tolerance 1e-4; the table's `error max` is the worst step's final error."""
-    if variant == "auto":
-        return {"type": "auto", "tolerance": 1e-4}
+    if variant in ("auto", "apgd", "newton", "admm"):
+        return {"type": variant, "tolerance": 1e-4}
     return {"type": "nlgs", "tolerance": 1e-4, "max_iterations": 200, "exchange": variant}
 
 
@@ -60,7 +60,7 @@ def main():
     ap.add_argument("--steps", type=int, default=20)
     ap.add_argument("--large", action="store_true", help="also 10^5 spheres")
     ap.add_argument("--exchange", default="w,bodies",
-                    help="solvers to compare (comma-separated: w, bodies = nlgs with that exchange; auto)")
+                    help="solvers to compare (comma-separated: w, bodies = nlgs with that exchange; auto, apgd, newton, admm)")
     ap.add_argument("--friction", default="0.3", help="friction coefficients to run (comma-separated)")
     ap.add_argument("--layout", default="touching", help="touching (contacts from the start) and/or apart (none)")
     a = ap.parse_args()
@@ -90,7 +90,7 @@ def main():
             # A sweep plus the error checks (one every `check_every` = 5 sweeps, each about a sweep).
             solve = stages.get("solve", 0.0)
             # `auto`'s iterations mix sweeps with APGD steps: no sweep throughput for it.
-            rate = f"{updates / solve:>15.3g}" if updates and solve > 0 and exchange != "auto" else f"{'-':>15}"
+            rate = f"{updates / solve:>15.3g}" if updates and solve > 0 and exchange in ("w", "bodies") else f"{'-':>15}"
             print(f"{n:>8} {layout:>8} {mu:>4g} {exchange:>8} {contacts:>9} {sweeps / len(frames):>11.1f} "
                   f"{1000 * total / a.steps:>8.2f} {worst:>9.1e} {100 * detect / total:>8.1f} {100 * solve / total:>8.1f} "
                   f"{100 * update / total:>8.1f} {100 * stages.get('output', 0) / total:>8.1f} {rate}", flush=True)

@@ -11,6 +11,7 @@
 
 #include "cli_runner.hpp"
 #include "h5_read.hpp"
+#include "h5_write.hpp"
 #include "kernel/fclib/fclib.hpp"
 
 namespace fs = std::filesystem;
@@ -25,22 +26,8 @@ std::string write_local(const std::string& name, const std::string& fault) {
   const fs::path dir = scratch_dir("fclib_files");
   const std::string path = (dir / name).string();
   hid_t f = H5Fcreate(path.c_str(), H5F_ACC_TRUNC, H5P_DEFAULT, H5P_DEFAULT);
-  auto ints = [&](const char* p, std::vector<int> v) {
-    hsize_t n = v.size();
-    hid_t s = H5Screate_simple(1, &n, nullptr);
-    hid_t d = H5Dcreate2(f, p, H5T_STD_I32LE, s, H5P_DEFAULT, H5P_DEFAULT, H5P_DEFAULT);
-    H5Dwrite(d, H5T_NATIVE_INT, H5S_ALL, H5S_ALL, H5P_DEFAULT, v.data());
-    H5Dclose(d);
-    H5Sclose(s);
-  };
-  auto dbls = [&](const char* p, std::vector<double> v) {
-    hsize_t n = v.size();
-    hid_t s = H5Screate_simple(1, &n, nullptr);
-    hid_t d = H5Dcreate2(f, p, H5T_IEEE_F64LE, s, H5P_DEFAULT, H5P_DEFAULT, H5P_DEFAULT);
-    H5Dwrite(d, H5T_NATIVE_DOUBLE, H5S_ALL, H5S_ALL, H5P_DEFAULT, v.data());
-    H5Dclose(d);
-    H5Sclose(s);
-  };
+  auto ints = [&](const char* p, std::vector<int> v) { h5_write(f, p, v); };
+  auto dbls = [&](const char* p, std::vector<double> v) { h5_write(f, p, v); };
   hid_t lcpl = H5Pcreate(H5P_LINK_CREATE);
   H5Pset_create_intermediate_group(lcpl, 1);
   H5Gclose(H5Gcreate2(f, "/fclib_local/W", lcpl, H5P_DEFAULT, H5P_DEFAULT));

@@ -290,36 +290,33 @@ class Auto : public Solver {
   double run_member(Member who, Eigen::VectorXd& x, double units, long budget, double* reached) {
     Eigen::VectorXd v;
     SolverReport s;
+    auto limits = [&](auto& o) {  // the members' Options share these four
+      o.tolerance = tol_;
+      o.max_iterations = budget;
+      o.max_work = units;
+      o.work = &work_;
+    };
     switch (who) {
       case nlgs_member:
         return run_nlgs(x, budget, units, false, reached);
       case newton_member:
       case newton_start_member: {
         newton::Options o;
-        o.tolerance = tol_;
-        o.max_iterations = budget;
-        o.max_work = units;
-        o.work = &work_;
+        limits(o);
         o.last = &last_;
         s = newton_.solve(with_w(), o, x, v);
         break;
       }
       case admm_member: {
         admm::Options o;
-        o.tolerance = tol_;
-        o.max_iterations = budget;
-        o.max_work = units;
-        o.work = &work_;
+        limits(o);
         o.resume = admm_slices_++ > 0;  // its own run goes on where its last slice stopped
         s = admm_.solve(with_w(), o, x, v);
         break;
       }
       case apgd_member: {
         apgd::Options o;
-        o.tolerance = tol_;
-        o.max_iterations = budget;
-        o.max_work = units;
-        o.work = &work_;
+        limits(o);
         s = apgd::solve(*P_, o, x, v);  // through the factor when W was not given
         break;
       }
