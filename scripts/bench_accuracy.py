@@ -62,8 +62,8 @@ def rolling(h, tol):
     """A disk (r = 0.05) rolling without slip down a 20° incline (μ = 0.5 > tan α / 3):
     s(t) = (1/3) g sin α t²; error of s at t = 0.5 s relative to s."""
     a = math.radians(20)
-    n = [-math.sin(a), math.cos(a)]
-    c = [0.5 * n[0] * -0.01, 0.5 * n[1] * -0.01]  # the slab's centre, its surface through the origin
+    n = [math.sin(a), math.cos(a)]  # the normal of a segment turned by −a (it descends to +x)
+    c = [-0.005 * n[0], -0.005 * n[1]]  # the slab's centre: its surface through the origin
     bodies = [{"name": "slope", "fixed": True, "position": c, "angle": -a,
                "contactors": [{"shape": "segment", "length": 4, "thickness": 0.01, "group": "w"}]},
               {"name": "disk", "material": "m", "position": [0.05 * n[0], 0.05 * n[1]],
@@ -155,12 +155,16 @@ def main():
     ap.add_argument("--steps", nargs="+", type=float, default=[2e-3, 1e-3, 5e-4, 2.5e-4])
     ap.add_argument("--tolerances", nargs="+", type=float, default=[1e-2, 1e-3, 1e-4, 1e-6])
     ap.add_argument("--cases", nargs="+", default=list(CASES))
+    ap.add_argument("--from-csv", nargs="+", metavar="CSV", help="no runs: plot the rows of these accuracy.csv files")
     a = ap.parse_args()
     moreau = os.path.abspath(a.moreau)
     os.makedirs(a.out, exist_ok=True)
     rows = []
+    for f in a.from_csv or []:
+        rows += [{"case": r["case"], "h": float(r["h"]), "tolerance": float(r["tolerance"]), "error": float(r["error"]),
+                  "seconds": float(r["seconds"])} for r in csv.DictReader(open(f)) if r["case"] in a.cases]
     with tempfile.TemporaryDirectory() as tmp:
-        for name in a.cases:
+        for name in ([] if a.from_csv else a.cases):
             make, error = CASES[name]
             ref = None
             if error is None:  # the granular scene: against a fine reference
@@ -187,7 +191,8 @@ def main():
             rs = [r for r in rows if r["case"] == name and r["tolerance"] == tol]
             e = [max(r["error"], 1e-16) for r in rs]
             axes[0][j].loglog([r["h"] for r in rs], e, "o-", label=f"tol {tol:.0e}")
-            axes[1][j].loglog([r["seconds"] for r in rs], e, "o-", label=f"tol {tol:.0e}")
+            by_time = sorted(zip([r["seconds"] for r in rs], e))
+            axes[1][j].loglog([t for t, _ in by_time], [x for _, x in by_time], "o-", label=f"tol {tol:.0e}")
         axes[0][j].set_title(name)
         axes[0][j].set_xlabel("time step h (s)")
         axes[1][j].set_xlabel("wall time (s)")
