@@ -64,6 +64,7 @@ void ContactAssembly::build(const State& st, const std::vector<ContactModel>& mo
   const int k = k_all;
   BodyFactor& f = problem.factor;
   f.k = k;
+  f.diagonal.clear();  // the laws' compliance, added after (law_step.hpp)
   f.inverse_mass.assign(nb * k * k, 0.0);
   std::vector<char> moves(nb, 0);
   for (std::size_t b = 0; b < nb; ++b) {

@@ -153,9 +153,13 @@ void ContactStages::warm_start(StepContext& c) {
     std::sort(previous_keys_.begin(), previous_keys_.end());
   }
   std::vector<std::ptrdiff_t> from(nc, -1);
+  new_contact_.assign(nc, 1);
   for (std::size_t a = 0; a < nc; ++a) {
     auto it = std::lower_bound(previous_keys_.begin(), previous_keys_.end(), std::make_pair(contacts_[a].key, std::ptrdiff_t{-1}));
-    if (it != previous_keys_.end() && it->first == contacts_[a].key) from[a] = it->second;
+    if (it != previous_keys_.end() && it->first == contacts_[a].key) {
+      from[a] = it->second;
+      new_contact_[a] = 0;
+    }
   }
   set.rebuild(from);
   double* bodies = set.field(C::bodies).data();
@@ -193,6 +197,7 @@ void ContactStages::solve(StepContext& c) {
     u_.resize(0);
     report_ = SolverReport{};
     report_.converged = true;
+    law_step_.no_contacts(c.state);
     return;
   }
   sides_.clear();
@@ -218,23 +223,10 @@ void ContactStages::solve(StepContext& c) {
     }
   }
   assembly_.build(st, models, sides_, solver->reads_matrix_with_factor(), problem_);
-  problem_.q = assembly_.local_velocity(st, Velocity::free);
-  problem_.mu.resize(static_cast<Eigen::Index>(nc));
-  const Eigen::VectorXd u0 = assembly_.local_velocity(st, Velocity::begin);
-  for (std::size_t a = 0; a < nc; ++a) {
-    const Law& law = *laws[contacts_[a].law];
-    problem_.mu[static_cast<Eigen::Index>(a)] = law.friction();
-    problem_.q[static_cast<Eigen::Index>(a * d)] +=
-        law.normal_shift(LawInput{contacts_[a].point.gap, u0[static_cast<Eigen::Index>(a * d)], c.h});
-  }
-  problem_.error_scale = approaching_contacts_scale(problem_);
+  q_free_ = assembly_.local_velocity(st, Velocity::free);
+  u_begin_ = assembly_.local_velocity(st, Velocity::begin);
   assembly_.lend(problem_);
-  // Export (scene key export_problems) while the factor is still lent: W may have to be
-  // built from it. The warm start is kept first, since the solver overwrites r_.
-  const bool exporting = exporter && exporter->due(c.step + 1);
-  const Eigen::VectorXd warm_start = exporting ? r_ : Eigen::VectorXd();
-  report_ = solver->solve(problem_, r_, u_);
-  if (exporting) exporter->write(c.step + 1, static_cast<double>(c.step + 1) * c.h, c.h, problem_, warm_start, r_, report_);
+  solve_with_laws(c);
   assembly_.take_back(problem_);
   for (Eigen::Index i = 0; i < r_.size(); ++i)
     if (!std::isfinite(r_[i])) throw RunError("the contact solver returned non-finite impulses at step " + std::to_string(c.step));
@@ -251,15 +243,57 @@ std::string ContactStages::worst_contact_bodies(const State& st) const {
   const int d = problem_.dim;
   double worst = -1;
   std::size_t at = 0;
-  if (u_.size() != r_.size() || r_.size() != static_cast<Eigen::Index>(contacts_.size() * d)) return "";
+  // In the solver's variables (the laws' change of variables, law_step.hpp).
+  const Eigen::VectorXd &r = law_step_.solver_impulse(), &u = law_step_.solver_velocity();
+  if (u.size() != r.size() || r.size() != static_cast<Eigen::Index>(contacts_.size() * d)) return "";
   for (std::size_t a = 0; a < contacts_.size(); ++a) {
-    const double e = contact_natural_map_squared(d, problem_.mu[static_cast<Eigen::Index>(a)], r_.data() + a * d, u_.data() + a * d);
+    const double e = contact_natural_map_squared(d, problem_.mu[static_cast<Eigen::Index>(a)], r.data() + a * d, u.data() + a * d);
     if (e > worst) worst = e, at = a;
   }
   if (worst < 0) return "";
   const auto& names = st.names();
   return "\"" + names[contactors[contacts_[at].contactor[0]].body] + "\" and \"" +
          names[contactors[contacts_[at].contactor[1]].body] + "\"";
+}
+
+void ContactStages::solve_with_laws(StepContext& c) {
+  // The laws' terms make the standard problem the solver sees (law_step.hpp); a law whose
+  // internal variables the solution changes (damage, bonds that break) has the step
+  // solved again, from the last answer, until they agree.
+  const std::size_t nc = contacts_.size();
+  contact_law_.resize(nc);
+  contact_gap_.resize(nc);
+  for (std::size_t a = 0; a < nc; ++a) {
+    contact_law_[a] = contacts_[a].law;
+    contact_gap_[a] = contacts_[a].point.gap;
+  }
+  law_step_.begin(c.state, c.step, c.h, c.theta, contact_law_, contact_gap_, u_begin_, q_free_, new_contact_);
+  // Export (scene key export_problems) while the factor is still lent: W may have to be
+  // built from it. The warm start is kept first, since the solver overwrites r_.
+  const bool exporting = exporter && exporter->due(c.step + 1);
+  Eigen::VectorXd warm_start, solved;
+  long iterations = 0;
+  for (int solves = 1;; ++solves) {
+    law_step_.to_solver(problem_, r_);
+    problem_.error_scale = approaching_contacts_scale(problem_);
+    if (exporting) warm_start = r_;
+    report_ = solver->solve(problem_, r_, u_);
+    if (exporting) solved = r_;  // the answer in the solver's variables
+    iterations += report_.iterations;
+    law_step_.from_solver(problem_, r_, u_);
+    if (!law_step_.update(r_, u_)) break;
+    if (solves == law_solves_per_step) {
+      if (!laws_warned_)
+        std::fprintf(stderr, "warning: step %ld: the contact laws' internal variables still change after %d solves of "
+                             "the step; its last solve is kept (docs/laws.md)\n", c.step, solves);
+      laws_warned_ = true;
+      break;
+    }
+  }
+  report_.iterations = iterations;
+  law_step_.finish(c.state);
+  // The problem as the solver saw it last (the laws' standard form), and its answer.
+  if (exporting) exporter->write(c.step + 1, static_cast<double>(c.step + 1) * c.h, c.h, problem_, warm_start, solved, report_);
 }
 
 void ContactStages::store_reactions(StepContext& c) {
@@ -292,20 +326,15 @@ void ContactStages::store_reactions(StepContext& c) {
       for (int i = 0; i < 3; ++i)
         for (int j = 0; j < 3; ++j) frame_rows[i][j] = fr[i][j];
     }
-    double world[3] = {0, 0, 0}, rt = 0, ut = 0;
+    double world[3] = {0, 0, 0};
     for (int i = 0; i < d; ++i) {
       impulse[d * a + i] = r[i];
       velocity[d * a + i] = u_[static_cast<Eigen::Index>(a * d + i)];
       for (int j = 0; j < d; ++j) world[j] += r[i] * frame_rows[i][j];
-      if (i > 0) {
-        rt += r[i] * r[i];
-        ut += velocity[d * a + i] * velocity[d * a + i];
-      }
     }
     for (int j = 0; j < d; ++j) force[d * a + j] = world[j] / c.h;
     normal_force[a] = r[0] / c.h;
-    const double mu = problem_.mu[static_cast<Eigen::Index>(a)];
-    status[a] = r[0] > 0 ? ((std::sqrt(ut) > 1e-9 && std::sqrt(rt) >= mu * r[0] * (1 - 1e-6)) ? 2 : 1) : 0;
+    status[a] = law_step_.status(a);  // in the solver's variables (a bond in tension is closed)
   }
 }
 

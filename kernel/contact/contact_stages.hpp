@@ -23,6 +23,7 @@
 #include "problem_export.hpp"
 #include "contact_assembly.hpp"
 #include "solve_log.hpp"
+#include "law_step.hpp"
 
 namespace moreau::kernel {
 
@@ -49,7 +50,7 @@ class ContactStages {
   std::vector<Contactor> contactors;
   int groups = 0;
   std::vector<int> law_of;  ///< groups × groups → index into laws, −1: no interaction
-  std::vector<Owned<Law>> laws;
+  std::vector<Owned<Law>> laws;  ///< in the order of the scene's law names (the `law` field indexes them)
   std::vector<Owned<Detector>> detector_objects;
   std::vector<DetectorUse> detectors;
   Owned<BroadPhase> broadphase;
@@ -59,6 +60,11 @@ class ContactStages {
   bool stop_on_failure = false;
   std::unique_ptr<ProblemExport> exporter;  ///< null unless the scene has `export_problems`
   SolveLog solve_log;  ///< misses and worst error of the run's solves (its tolerance set by the builder)
+
+  /// After the laws are made: their internal variables on the `contacts` set (law_step.hpp).
+  void setup_laws(State& state, const std::vector<std::string>& names, const std::vector<std::string>& pointers) {
+    law_step_.setup(state, laws, names, pointers);
+  }
 
   void detection_configuration(StepContext& ctx);
   void broad_phase(StepContext& ctx);
@@ -99,6 +105,14 @@ class ContactStages {
   Eigen::VectorXd r_, u_;
   SolverReport report_;
   std::vector<std::pair<std::uint64_t, std::ptrdiff_t>> previous_keys_;  ///< scratch of warm_start
+  // The laws' part of the solve (law_step.hpp).
+  void solve_with_laws(StepContext& c);
+  LawStep law_step_;
+  std::vector<char> new_contact_;     ///< per contact: no row of the previous step continues it
+  std::vector<int> contact_law_;      ///< per contact: index into laws
+  std::vector<double> contact_gap_;   ///< per contact: gap at the detection configuration
+  Eigen::VectorXd q_free_, u_begin_;  ///< H v_free, H v⁻
+  bool laws_warned_ = false;
 };
 
 }  // namespace moreau::kernel

@@ -3,6 +3,7 @@
 #include <algorithm>
 #include <array>
 #include <cmath>
+#include <cstdio>
 #include <filesystem>
 #include <moreau/error.hpp>
 #include <moreau/contact_fields.hpp>
@@ -297,10 +298,14 @@ class SceneChecker {
     cs->groups = static_cast<int>(group_index.size());
     cs->law_of.assign(static_cast<std::size_t>(cs->groups) * cs->groups, -1);
     std::map<std::string, int> law_index;
+    std::vector<std::string> law_names, law_pointers;
     for (const auto& [name, use] : laws_) {
       law_index[name] = static_cast<int>(cs->laws.size());
       cs->laws.push_back(reg.create<Law>(use.name, use.params, ctx, use.pointer));
+      law_names.push_back(name);
+      law_pointers.push_back(use.pointer);
     }
+    cs->setup_laws(w.state, law_names, law_pointers);
     for (const auto& in : interactions_) {
       const int a = group_index.at(in.a), b = group_index.at(in.b), l = law_index.at(in.law);
       cs->law_of[a * cs->groups + b] = cs->law_of[b * cs->groups + a] = l;
@@ -316,6 +321,14 @@ class SceneChecker {
     cs->broadphase = reg.create<BroadPhase>(broadphase_.name, broadphase_.params, ctx, broadphase_.pointer);
     cs->solver = reg.create<Solver>(solver_.name, solver_.params, ctx, solver_.pointer);
     cs->alert = detection_["alert"].get<double>();
+    // A law acting on open contacts (a meniscus) sees them only within the alert distance.
+    for (std::size_t l = 0; l < cs->laws.size(); ++l)
+      if (cs->laws[l]->range() > cs->alert) {
+        char msg[256];
+        std::snprintf(msg, sizeof msg, "law \"%s\" acts on contacts up to %g m apart: expected an alert distance of at "
+                      "least that (it is %g m)", law_names[l].c_str(), cs->laws[l]->range(), cs->alert);
+        throw InputError("/detection/alert", msg);
+      }
     cs->stop_on_failure = stop_on_failure_;
     cs->solve_log.tolerance = solver_.params.json().value("tolerance", 0.0);
     if (export_) cs->exporter = std::make_unique<ProblemExport>(export_settings(w, ctx));

@@ -57,6 +57,7 @@ class WProduct {
           w[static_cast<Eigen::Index>(a * d + i)] += s;
         }
       }
+    for (std::size_t i = 0; i < f.diagonal.size(); ++i) w[static_cast<Eigen::Index>(i)] += f.diagonal[i];
     return w;
   }
 

@@ -22,9 +22,11 @@ struct Layout {
 
 /// D: rows kept per contact (1: frictionless, the normal only); K: columns per body;
 /// rd: the stride of r (the problem's dimension).
+/// diag: the laws' compliance (BodyFactor::diagonal, rd per contact) or null: part of A,
+/// not of the body velocities, so the contact's own part b leaves out is A − diag.
 template <int D, int K, bool Iso = false>
 void sweep_impl(const LocalOptions& local, const double* rec, const int* body, double* dv, double* r, int rd, double omega,
-                const std::vector<Eigen::Index>& order) {
+                const std::vector<Eigen::Index>& order, const double* diag) {
   using L = Layout<D, K, Iso>;
   for (Eigen::Index a : order) {
     const double* R = rec + a * L::size;
@@ -35,6 +37,7 @@ void sweep_impl(const LocalOptions& local, const double* rec, const int* body, d
     for (int i = 0; i < D; ++i) {
       double s = R[L::q + i];
       for (int j = 0; j < D; ++j) s -= R[L::A + i * D + j] * ra[j];
+      if (diag) s += diag[a * rd + i] * ra[i];
       b[i] = s;
       old[i] = rn[i] = ra[i];
     }
@@ -161,6 +164,8 @@ void BodySweeper::prepare(const LocalProblem& P, const Eigen::VectorXd& r) {
     double* q = R + pd * pd;
     R[pd * pd + pd] = P.mu[static_cast<Eigen::Index>(a)];
     for (int i = 0; i < pd; ++i) q[i] = P.q[static_cast<Eigen::Index>(a * d + i)];
+    if (!f.diagonal.empty())  // the laws' compliance: part of W, not of H M⁻¹ Hᵀ
+      for (int i = 0; i < pd; ++i) A[i * pd + i] += f.diagonal[a * d + i];
     for (int side = 0; side < 2; ++side) {
       const int b = f.body[2 * a + side];
       if (b < 0) continue;
@@ -224,16 +229,17 @@ void BodySweeper::sweep(Eigen::VectorXd& r, double omega, const std::vector<Eige
   const double* R = rec_.data();
   const int* b = body_.data();
   double* v = dv_.data();
+  const double* g = problem_->factor.diagonal.empty() ? nullptr : problem_->factor.diagonal.data();
   if (pd_ == 1) {
-    if (pk_ == 2) sweep_impl<1, 2>(local_, R, b, v, x, d_, omega, order);
-    else if (pk_ == 3) sweep_impl<1, 3>(local_, R, b, v, x, d_, omega, order);
-    else sweep_impl<1, 6>(local_, R, b, v, x, d_, omega, order);
+    if (pk_ == 2) sweep_impl<1, 2>(local_, R, b, v, x, d_, omega, order, g);
+    else if (pk_ == 3) sweep_impl<1, 3>(local_, R, b, v, x, d_, omega, order, g);
+    else sweep_impl<1, 6>(local_, R, b, v, x, d_, omega, order, g);
   } else if (d_ == 2) {
-    if (iso_) sweep_impl<2, 3, true>(local_, R, b, v, x, d_, omega, order);
-    else sweep_impl<2, 3>(local_, R, b, v, x, d_, omega, order);
+    if (iso_) sweep_impl<2, 3, true>(local_, R, b, v, x, d_, omega, order, g);
+    else sweep_impl<2, 3>(local_, R, b, v, x, d_, omega, order, g);
   } else {
-    if (iso_) sweep_impl<3, 6, true>(local_, R, b, v, x, d_, omega, order);
-    else sweep_impl<3, 6>(local_, R, b, v, x, d_, omega, order);
+    if (iso_) sweep_impl<3, 6, true>(local_, R, b, v, x, d_, omega, order, g);
+    else sweep_impl<3, 6>(local_, R, b, v, x, d_, omega, order, g);
   }
 }
 
@@ -253,6 +259,7 @@ void BodySweeper::velocities(const Eigen::VectorXd& r, Eigen::VectorXd& u) {
           const double* H = R + off_H_ + side * d * k;
           for (int l = 0; l < k; ++l) s += H[i * k + l] * dv_[b * k + l];
         }
+        if (!problem_->factor.diagonal.empty()) s += problem_->factor.diagonal[a * d + i] * r[static_cast<Eigen::Index>(a * d + i)];
         u[static_cast<Eigen::Index>(a * d + i)] = s;
       }
     }

@@ -2,8 +2,8 @@
 // The kernel's table of the `contacts` set (docs/architecture.md, docs/output.md): one row
 // per contact of the current step, rebuilt at stage warm_start. Fields marked `persist`
 // carry their values over to the next step's row of the same identity (`key`): the local
-// impulse (the solver's warm start) now; a law's internal variables later, declared the
-// same way on this set. The table drives the output's contacts/ datasets and the restart
+// impulse (the solver's warm start), the status (static/dynamic friction) and the laws'
+// internal variables, which each law declares on this set (law.hpp, law_fields.hpp). The table drives the output's contacts/ datasets and the restart
 // (fields marked `restart`: the keys and what persists), like every other set.
 //
 // Conventions: the force acts on the first body, its opposite on the second; the normal
@@ -44,8 +44,9 @@ inline std::vector<FieldSpec> table() {
       f(impulse, 2, 3, "N s", O::frame, "local impulse r over the step, normal first (the next step's warm start)",
         FileType::real, true, true),
       f(force, 2, 3, "N", O::frame, "the force on the first body, world frame (impulse / h)"),
-      f(normal_force, 1, 1, "N", O::frame, "normal force, impulse_n / h (>= 0)"),
-      f(status, 1, 1, "1", O::frame, "0 open, 1 sticking, 2 sliding", FileType::int8),
+      f(normal_force, 1, 1, "N", O::frame, "normal force, impulse_n / h (negative: a bond in tension)"),
+      f(status, 1, 1, "1", O::frame, "0 open, 1 sticking, 2 sliding (the next step's laws read it: static/dynamic friction)",
+        FileType::int8, true, true),
       f(velocity, 2, 3, "m/s", O::none, "local relative velocity at the end of the step (u = W r + q), normal first"),
       f(law, 1, 1, "1", O::none, "its contact law (index into the scene's laws, in name order)"),
   };

@@ -22,13 +22,18 @@ struct BodyFactor {
   std::vector<double> H;
   /// n_bodies × (k × k), row-major, symmetric: velocity change per impulse (1/kg, 1/(kg m²)).
   std::vector<double> inverse_mass;
+  /// dim·nc or empty: W = H M⁻¹ Hᵀ + diag(diagonal), the contact laws' compliance
+  /// (law.hpp: elastic interfaces, cohesive zones). Whoever uses the factor honours it:
+  /// assemble_w, multiply_w (factor_matrix.hpp), the body-velocity NLGS, APGD.
+  std::vector<double> diagonal;
   bool present() const { return k > 0; }
 };
 
 struct LocalProblem {
   int dim = 3;                                        ///< 2 or 3
   /// (dim·nc)², symmetric positive semi-definite; empty (0 × 0) when the solver said it
-  /// does not read it (Solver::reads_matrix_with_factor) and the factor is present.
+  /// does not read it (Solver::reads_matrix_with_factor) and the factor is present. From
+  /// the time-stepper it includes the laws' compliance (BodyFactor::diagonal).
   Eigen::SparseMatrix<double, Eigen::RowMajor> W;
   Eigen::VectorXd q;                                  ///< dim·nc
   Eigen::VectorXd mu;                                 ///< nc

@@ -3,7 +3,8 @@
 // as `LocalProblem::W`, and what a solver given only the factor assembles when it needs
 // the matrix after all (`auto` escalating from NLGS to Newton or ADMM); and the product
 // W x through the factor, for solvers that need only products (APGD, NLGS's checks).
-// W_αβ = Σ over the bodies α and β share of H_α,b M_b⁻¹ H_β,bᵀ, written straight into
+// W_αβ = Σ over the bodies α and β share of H_α,b M_b⁻¹ H_β,bᵀ (plus the laws' compliance
+// on the diagonal, BodyFactor::diagonal, when given), written straight into
 // compressed rows: a triplet list would hold every contribution of every body (~3·10⁶
 // entries for 10⁴ spheres) and sort them. Fixed bodies (index −1) couple nothing. Column
 // indices are sorted within each row, as Eigen's compressed format expects.
@@ -59,8 +60,13 @@ inline Eigen::SparseMatrix<double, Eigen::RowMajor> assemble_w(int d, const Body
   vals.reserve(cols.capacity());
   std::vector<int> neighbours, slot(nc, -1);
   std::vector<double> blocks;
+  const bool diagonal = !f.diagonal.empty();
   for (std::size_t a = 0; a < nc; ++a) {
     neighbours.clear();
+    if (diagonal) {  // its own block, even between bodies impulses do not move
+      slot[a] = 0;
+      neighbours.push_back(static_cast<int>(a));
+    }
     for (int side = 0; side < 2; ++side) {
       const int b = f.body[2 * a + side];
       if (b < 0) continue;
@@ -89,6 +95,8 @@ inline Eigen::SparseMatrix<double, Eigen::RowMajor> assemble_w(int d, const Body
           }
       }
     }
+    if (diagonal)
+      for (int i = 0; i < d; ++i) blocks[(static_cast<std::size_t>(slot[a]) * d + i) * d + i] += f.diagonal[a * d + i];
     for (int i = 0; i < d; ++i) {
       for (std::size_t n = 0; n < neighbours.size(); ++n)
         for (int j = 0; j < d; ++j) {
@@ -107,9 +115,9 @@ inline Eigen::SparseMatrix<double, Eigen::RowMajor> assemble_w(int d, const Body
   return W;
 }
 
-/// out = W x = H (M⁻¹ (Hᵀ x)) without forming W: per contact side, d × k each way, and
-/// k × k per body. `impulse` and `dv` are scratch (bodies × k), kept by the caller so
-/// repeated products do not allocate.
+/// out = W x = H (M⁻¹ (Hᵀ x)) (+ diagonal ∘ x) without forming W: per contact side, d × k
+/// each way, and k × k per body. `impulse` and `dv` are scratch (bodies × k), kept by the
+/// caller so repeated products do not allocate.
 inline void multiply_w(int d, const BodyFactor& f, const Eigen::VectorXd& x, Eigen::VectorXd& out,
                        std::vector<double>& impulse, std::vector<double>& dv) {
   const int k = f.k;
@@ -141,6 +149,8 @@ inline void multiply_w(int d, const BodyFactor& f, const Eigen::VectorXd& x, Eig
         out[static_cast<Eigen::Index>(a * d + i)] += s;
       }
     }
+  if (!f.diagonal.empty())
+    for (Eigen::Index i = 0; i < x.size(); ++i) out[i] += f.diagonal[static_cast<std::size_t>(i)] * x[i];
 }
 
 }  // namespace moreau
