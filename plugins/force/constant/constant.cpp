@@ -1,4 +1,5 @@
-// `constant`: a constant force and torque (world frame) on one body, for the whole run. The
+// `constant`: a force and torque (world frame) on one body, for the whole run, constant or
+// growing at a constant rate (F(t) = force + rate t: a load ramp, as in a pull test). The
 // body is addressed by name; its data is its node's row in its modelization's node set
 // (State::node_values), so it works whatever other modelizations share the scene.
 #include <moreau/force.hpp>
@@ -15,15 +16,18 @@ class Constant : public Force {
     s.string("body", "name of the body");
     s.vector("force", "force, world frame", length::dimension).units("N").optional();
     s.vector("torque", "torque about the centre of mass, world frame", length::rotation).units("N m").optional();
+    s.vector("rate", "growth of the force per second: F(t) = force + rate t", length::dimension).units("N/s").optional();
     return s;
   }
-  static constexpr const char* doc = "constant force and torque on a body";
+  static constexpr const char* doc = "constant force and torque on a body (or a force growing at a constant rate)";
 
   Constant(const Params& p, const BuildContext& ctx)
       : body_(static_cast<std::size_t>(ctx.body_index(p.string("body"), p.pointer("body")))),
         force_(p.has("force") ? p.vector("force") : std::vector<double>(ctx.dimension, 0.0)),
-        torque_(p.has("torque") ? p.vector("torque") : std::vector<double>(ctx.dimension == 2 ? 1 : 3, 0.0)) {
-    if (!p.has("force") && !p.has("torque")) throw p.error("", "give a \"force\", a \"torque\", or both");
+        torque_(p.has("torque") ? p.vector("torque") : std::vector<double>(ctx.dimension == 2 ? 1 : 3, 0.0)),
+        rate_(p.has("rate") ? p.vector("rate") : std::vector<double>(ctx.dimension, 0.0)) {
+    if (!p.has("force") && !p.has("torque") && !p.has("rate"))
+      throw p.error("", "give a \"force\", a \"torque\", a \"rate\", or several");
     // A force on the body's one node: bodies of a modelization with loads on one node (rigid).
     if (ctx.state) {
       const auto b = static_cast<std::size_t>(body_);
@@ -36,8 +40,10 @@ class Constant : public Force {
   }
 
   void apply(StepContext& c) override {
+    // The force of the step at t⁻ + θh: the θ-scheme's (1−θ)F⁻ + θF⁺ for a linear ramp.
+    const double time = c.time + c.theta * c.h;
     auto f = c.state.node_values(body_, rigid::force);
-    for (std::size_t k = 0; k < f.size(); ++k) f[k] += force_[k];
+    for (std::size_t k = 0; k < f.size(); ++k) f[k] += force_[k] + rate_[k] * time;
     if (!c.state.has_node_field(body_, rigid::torque)) return;
     auto t = c.state.node_values(body_, rigid::torque);
     for (std::size_t k = 0; k < t.size(); ++k) t[k] += torque_[k];
@@ -45,7 +51,7 @@ class Constant : public Force {
 
  private:
   std::size_t body_;
-  std::vector<double> force_, torque_;
+  std::vector<double> force_, torque_, rate_;
 };
 
 MOREAU_REGISTER(Constant, "constant")

@@ -6,7 +6,6 @@
 // When the solution reaches the envelope (the apex, the cone, or the tension cut-off),
 // the bond breaks for good and the step is solved again without it; the contact is then
 // plain Coulomb with static/dynamic friction.
-#include <cmath>
 #include <moreau/coulomb_law.hpp>
 #include <moreau/law_fields.hpp>
 
@@ -61,15 +60,16 @@ class Cohesive : public Law {
   bool update(const LawInput& in, const LawResult& res, const LawVariables& v) const override {
     double& bond = v.end(0);
     if (bond != LF::intact) return true;
-    // The solution in the solver's variables r' = r + c e_n: on the envelope it breaks.
-    const double c = apex(in.h), tol = 1e-6 * c;
-    const double rn = res.impulse[0] + c;
-    double rt = 0;
-    for (int k = 1; k < in.dim; ++k) rt += res.impulse[k] * res.impulse[k];
-    rt = std::sqrt(rt);
-    const bool apex_or_cone = rn <= tol || rt >= mu_s_ * rn - mu_s_ * tol;
-    const bool cut_off = res.impulse[0] <= -sigma_t_ * area_ * in.h * (1 - 1e-6);
-    if (!apex_or_cone && !cut_off) return true;
+    // It breaks where the solution reaches its envelope: slipping on the cone (status in
+    // the solver's variables r' = r + c e_n), pulled to the apex (r'_n = 0: the tension
+    // C/μ_s), or beyond the tension cut-off σ_t. Not merely on the cone while sticking:
+    // several bonds of one rigid block share its load in ways the rigid problem leaves
+    // open, and one of them may sit on its cone while the block holds.
+    const double c = apex(in.h);
+    const bool slips = res.status == 2;
+    const bool at_apex = res.impulse[0] + c <= 1e-9 * c;
+    const bool cut_off = res.impulse[0] <= -sigma_t_ * area_ * in.h * (1 - 1e-9);
+    if (!slips && !at_apex && !cut_off) return true;
     bond = LF::broken;
     return false;
   }
