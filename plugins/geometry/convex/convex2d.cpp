@@ -107,8 +107,11 @@ void polygon_polygon(const Polygon& a, const Polygon& b, double alert, std::vect
       k = i;
     }
   }
+  // A point keeps the id of the incident vertex it comes from, clipped or not: two equal
+  // faces placed flush and sheared (a glued joint) keep their contacts, and with them
+  // the warm start and the laws' internal variables (docs/laws.md).
   V2 p[2] = {inc.v[k], inc.v[(k + 1) % inc.v.size()]};
-  int id[2] = {static_cast<int>(k), static_cast<int>((k + 1) % inc.v.size())};
+  const int id[2] = {static_cast<int>(k), static_cast<int>((k + 1) % inc.v.size())};
   // Clip to the reference edge's extent.
   const V2 r0 = ref.v[r], r1 = ref.v[(r + 1) % ref.v.size()];
   const V2 t = (1 / norm(r1 - r0)) * (r1 - r0);
@@ -122,7 +125,6 @@ void polygon_polygon(const Polygon& a, const Polygon& b, double alert, std::vect
       const int o = out0 ? 0 : 1;
       const double f = (lim - s0) / (s1 - s0);
       p[o] = p[0] + f * (p[1] - p[0]);
-      id[o] = 8 + side;
     }
   }
   const double rr = ref_is_b ? b.radius : a.radius, ri = ref_is_b ? a.radius : b.radius;
