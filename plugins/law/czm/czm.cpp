@@ -73,6 +73,8 @@ class Czm : public Law {
                        "gap of the contact when it was bonded (zero opening)")};
   }
   LawNeeds needs() const override { return {true, true}; }
+  /// A bond stays a contact (so a bond) only while detected: up to the rupture opening.
+  double range() const override { return dn0_ * lfn_; }
 
   void terms(const LawInput& in, const LawVariables& v, LawTerms& out) const override {
     double& b = v.end(bond);
