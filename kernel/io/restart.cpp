@@ -89,6 +89,11 @@ RestartFrame read_restart(const std::string& path, std::optional<long> step, Sta
       std::string dp = fp + "/" + set.name() + "/" + field.name();
       if (!h5::exists(f.get(), dp) && set.name() == legacy) dp = fp + "/" + field.name();  // moreau-output/1
       if (!field.spec().restart && !h5::exists(f.get(), dp)) continue;  // shown, not needed
+      if (set.name() == sets::contacts && field.spec().depths == 2 && !h5::exists(f.get(), dp))
+        throw InputError(dp, "missing: the scene's contact laws keep '" + field.name() +
+                                 "' per contact and a continuation needs it (docs/laws.md); expected the output of a run "
+                                 "with the same laws",
+                         path);
       read_field(f.get(), dp, field, path);
     }
   }

@@ -1,5 +1,6 @@
 #include "xdmf.hpp"
 
+#include <algorithm>
 #include <cstdio>
 #include <filesystem>
 #include <fstream>
@@ -15,6 +16,13 @@ namespace fs = std::filesystem;
 XdmfLayout xdmf_layout(const State& st, const std::vector<SetTopology>& topologies, const std::string& legacy) {
   XdmfLayout out;
   out.legacy = !legacy.empty();
+  if (const EntitySet* contacts = st.find_set(sets::contacts))
+    for (const auto& f : contacts->fields()) {
+      static const char* drawn[] = {"bodies", "key", "point", "normal", "gap", "impulse", "force", "normal_force", "status"};
+      if (f.spec().output != FieldOutput::frame || std::find(std::begin(drawn), std::end(drawn), f.name()) != std::end(drawn))
+        continue;
+      out.contact_fields.push_back({f.name(), f.components(), f.spec().file});
+    }
   if (out.legacy) return out;
   auto frame_fields = [](const EntitySet& set) {
     std::vector<std::pair<std::string, int>> v;
@@ -185,6 +193,17 @@ struct Writer {
     os << "  </Grid>\n";
   }
 
+  /// The contact laws' variables of a frame's contacts (scalars and d-vectors; an int8
+  /// field with several components is written as int32, field_io.cpp).
+  void law_fields(const std::string& cp, std::size_t nc, const char* center) {
+    for (const auto& f : layout.contact_fields) {
+      const char* kind = f.components == 1 ? "Scalar" : f.components == d ? "Vector" : nullptr;
+      if (!kind) continue;
+      const Type type = f.file == FileType::real ? f64 : f.file == FileType::int32 || f.components > 1 ? i32 : i8;
+      attribute(os, f.name.c_str(), kind, file, cp + "/" + f.name, nc, f.components == 1 ? 0 : f.components, type, center);
+    }
+  }
+
   void contacts(const std::vector<XdmfFrame>& frames) {
     os << "  <Grid Name=\"contacts\" GridType=\"Collection\" CollectionType=\"Temporal\">\n";
     for (const auto& f : frames) {
@@ -205,6 +224,7 @@ struct Writer {
       if (f.normal_force) attribute(os, "normal_force", "Scalar", file, cp + "/normal_force", nc, 0);
       attribute(os, "gap", "Scalar", file, cp + "/gap", nc, 0);
       attribute(os, "status", "Scalar", file, cp + "/status", nc, 0, i8);
+      law_fields(cp, nc, "Node");
       os << "   </Grid>\n";
     }
     os << "  </Grid>\n";
@@ -231,6 +251,7 @@ struct Writer {
       if (f.normal_force) attribute(os, "normal_force", "Scalar", file, cp + "/normal_force", nc, 0, f64, "Cell");
       attribute(os, "force", "Vector", file, cp + "/force", nc, d, f64, "Cell");
       attribute(os, "status", "Scalar", file, cp + "/status", nc, 0, i8, "Cell");
+      law_fields(cp, nc, "Cell");
       os << "   </Grid>\n";
     }
     os << "  </Grid>\n";

@@ -4,9 +4,11 @@
 // collections (docs/output.md, "Viewer description"):
 //  - "bodies": points (position) with velocities, angle/orientation, mass, fixed;
 //  - "shapes": each contactor drawn as its shape (output `display: "shapes"`);
-//  - "contacts": points with normal, force, normal_force, gap and status (Glyph arrows);
+//  - "contacts": points with normal, force, normal_force, gap and status (Glyph arrows),
+//    and the contact laws' variables (bond, damage, …);
 //  - "force_network": one line per contact joining its two bodies' positions, with
-//    normal_force, force and status on the lines (Tube, colour by force).
+//    normal_force, force, status and the laws' variables on the lines (Tube, colour by
+//    force; broken bonds: colour by bond).
 // Every array is a reference into the HDF5 file; nothing is copied.
 #include <cstddef>
 #include <moreau/state.hpp>
@@ -44,9 +46,17 @@ struct XdmfSet {
   std::size_t cells = 0, connectivity = 0;
   std::vector<std::pair<std::string, int>> element_fields;
 };
+/// A frame field of the `contacts` set drawn on the contacts and force-network grids
+/// beyond the kernel's own: the laws' internal variables (bond, damage, …).
+struct XdmfContactField {
+  std::string name;
+  int components = 1;
+  FileType file = FileType::real;
+};
 struct XdmfLayout {
   bool legacy = true;
   std::vector<XdmfSet> sets;
+  std::vector<XdmfContactField> contact_fields;
 };
 struct SetTopology;
 /// The layout of a state's output (`legacy`: the node set of a rigid-only scene, or "").
