@@ -161,6 +161,7 @@ void ContactStages::warm_start(StepContext& c) {
       new_contact_[a] = 0;
     }
   }
+  continue_nearby(set, from);
   set.rebuild(from);
   double* bodies = set.field(C::bodies).data();
   double* key = set.field(C::key).data();
@@ -184,6 +185,43 @@ void ContactStages::warm_start(StepContext& c) {
   }
   const double* impulse = set.field(C::impulse).data();
   r_ = Eigen::Map<const Eigen::VectorXd>(impulse, static_cast<Eigen::Index>(nc * d));
+}
+
+void ContactStages::continue_nearby(const EntitySet& set, std::vector<std::ptrdiff_t>& from) {
+  // A face contact's points change feature when the faces' roles flip (which one clips
+  // the other) or, in 3D, when a clipped polygon's corners change: the contact is the same
+  // place of the same two contactors. For laws that keep per-contact variables (a bond, a
+  // damage), a new contact continues the nearest row of the same two contactors that no
+  // contact continued, when it is within the distance the pair may move in a step.
+  if (!law_step_.keeps_variables()) return;
+  const std::size_t nc = contacts_.size(), rows = set.rows();
+  std::vector<char> taken(rows, 0);
+  bool any_new = false;
+  for (std::size_t a = 0; a < nc; ++a) {
+    if (from[a] >= 0) taken[static_cast<std::size_t>(from[a])] = 1;
+    else any_new = any_new || law_step_.keeps_variables(contacts_[a].law);
+  }
+  if (!any_new) return;
+  const int d = set.field(C::point).components();
+  const double* kv = set.field(C::key).data(Depth::begin);
+  const double* old_point = set.field(C::point).data(Depth::begin);
+  for (std::size_t a = 0; a < nc; ++a) {
+    if (from[a] >= 0 || !law_step_.keeps_variables(contacts_[a].law)) continue;
+    const Detected& ct = contacts_[a];
+    const double reach = alert + contactor_sweep_[ct.contactor[0]] + contactor_sweep_[ct.contactor[1]] + 1e-9;
+    std::ptrdiff_t best = -1;
+    double best_d2 = reach * reach;
+    for (std::size_t r = 0; r < rows; ++r) {
+      if (taken[r] || kv[3 * r] != ct.contactor[0] || kv[3 * r + 1] != ct.contactor[1]) continue;
+      double d2 = 0;
+      for (int k = 0; k < d; ++k) d2 += (old_point[d * r + k] - ct.point.point[k]) * (old_point[d * r + k] - ct.point.point[k]);
+      if (d2 <= best_d2) best_d2 = d2, best = static_cast<std::ptrdiff_t>(r);
+    }
+    if (best < 0) continue;
+    from[a] = best;
+    taken[static_cast<std::size_t>(best)] = 1;
+    new_contact_[a] = 0;
+  }
 }
 
 void ContactStages::solve(StepContext& c) {

@@ -107,6 +107,9 @@ class ContactStages {
   std::vector<std::pair<std::uint64_t, std::ptrdiff_t>> previous_keys_;  ///< scratch of warm_start
   // The laws' part of the solve (law_step.hpp).
   void solve_with_laws(StepContext& c);
+  /// New contacts of laws with internal variables continue a nearby vanished row of the
+  /// same two contactors (a face contact whose points changed feature).
+  void continue_nearby(const EntitySet& set, std::vector<std::ptrdiff_t>& from);
   LawStep law_step_;
   std::vector<char> new_contact_;     ///< per contact: no row of the previous step continues it
   std::vector<int> contact_law_;      ///< per contact: index into laws

@@ -43,6 +43,7 @@ void LawStep::setup(State& st, const std::vector<Owned<Law>>& laws, const std::v
       }
       contacts.declare(f);
       fields_[l].names.push_back(f.name);
+      variables_ = true;
       fields_[l].components.push_back(comps);
       counts_ = counts_ || f.name == LF::bond;
     }

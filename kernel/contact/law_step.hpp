@@ -32,6 +32,9 @@ class LawStep {
   void setup(State& state, const std::vector<Owned<Law>>& laws, const std::vector<std::string>& names,
              const std::vector<std::string>& pointers);
   bool iterates() const { return iterate_; }
+  /// Whether some law (or law `l`) keeps per-contact variables.
+  bool keeps_variables() const { return variables_; }
+  bool keeps_variables(int l) const { return !fields_[static_cast<std::size_t>(l)].names.empty(); }
 
   /// Per step, before the first solve: each contact's law, gap, u⁻ (dim each), normal
   /// free velocity, whether it is new; the status it ended the previous step with is read
@@ -72,7 +75,7 @@ class LawStep {
   const std::vector<Owned<Law>>* laws_ = nullptr;
   std::vector<LawNeeds> needs_;
   std::vector<LawFields> fields_;
-  bool update_ = false, iterate_ = false;
+  bool update_ = false, iterate_ = false, variables_ = false;
   bool counts_ = false;  ///< some law declares `bond`: the `laws` set exists
 
   // The step's contacts.
