@@ -47,6 +47,49 @@ with h5py.File(sys.argv[1], "r") as f:
     sys.exit(0 if abs(x - exact) <= tol else 1)
 PY
 
+# 3b. A third-party contact law with an internal variable (sdk/examples/external_law):
+# slip-weakening friction, mu from 0.6 to 0.3 over 0.1 m of slip. A block launched at
+# v0 = 2 m/s on a flat floor stops where its kinetic energy equals the friction's work,
+# v0^2/2 = g [(mu_s + mu_d)/2 d_c + mu_d (S - d_c)]: S = 0.62957 m. mu is taken from the
+# start-of-step slip (one step's lag), which dissipates up to (mu_s - mu_d)/mu_d v0 h more:
+# tolerance 2e-3 m. The `slip` variable is in the frames and equals the displacement (the
+# same trapezoidal rule as the positions) to 1e-5 m.
+cmake -S "$src/sdk/examples/external_law" -B "$work/law" -DCMAKE_PREFIX_PATH="$work/prefix" >/dev/null
+cmake --build "$work/law" >/dev/null
+[ -f "$work/law/libmoreau_law_slip_weakening.so" ] || fail "the external law was not built"
+cat > "$work/slide.json" <<JSON
+{
+  "format": "moreau-scene/1",
+  "dimension": 2,
+  "time": {"step": 0.001, "duration": 1.0},
+  "plugin_paths": ["law"],
+  "gravity": [0, -9.81],
+  "materials": {"m": {"density": 1000}},
+  "laws": {"fault": {"type": "slip_weakening", "static_friction": 0.6, "friction": 0.3, "weakening_distance": 0.1}},
+  "interactions": [{"groups": ["block", "floor"], "law": "fault"}],
+  "bodies": [
+    {"name": "floor", "fixed": true, "position": [0, -0.05],
+     "contactors": [{"shape": "polygon", "vertices": [[-2, -0.05], [2, -0.05], [2, 0.05], [-2, 0.05]], "group": "floor"}]},
+    {"name": "block", "material": "m", "position": [0, 0.05], "velocity": [2, 0],
+     "contactors": [{"shape": "polygon", "vertices": [[-0.1, -0.05], [0.1, -0.05], [0.1, 0.05], [-0.1, 0.05]], "group": "block"}]}],
+  "output": {"file": "slide.h5", "every": 100}
+}
+JSON
+(cd "$work" && "$moreau" run slide.json --quiet) || fail "moreau run with the external law failed"
+/usr/bin/python3 - "$work/slide.h5" <<'PY'
+import sys, h5py
+with h5py.File(sys.argv[1], "r") as f:
+    x = f["/frames/00001000/position"][1, 0]
+    slip = f["/frames/00001000/contacts/slip"][:]
+    g, v0, ms, md, dc, h = 9.81, 2.0, 0.6, 0.3, 0.1, 1e-3
+    exact = dc + (v0 * v0 / (2 * g) - (ms + md) / 2 * dc) / md
+    tol = (ms - md) / md * v0 * h
+    print(f"slip_weakening: stops at {x:.6f} m, exact {exact:.6f}, error {abs(x - exact):.2e}, tolerance {tol:.1e}; "
+          f"slip {slip.min():.6f} .. {slip.max():.6f} m")
+    ok = abs(x - exact) <= tol and len(slip) == 2 and all(abs(s - x) <= 1e-5 for s in slip)
+    sys.exit(0 if ok else 1)
+PY
+
 # 4. A plugin built for another ABI is refused, with the ABI message and exit code 2.
 cmake -S "$src/tests/sdk_install/mismatched" -B "$work/bad" -DCMAKE_PREFIX_PATH="$work/prefix" >/dev/null
 cmake --build "$work/bad" >/dev/null
@@ -59,4 +102,4 @@ set -e
 [ "$code" -eq 2 ] || fail "expected exit code 2 for the mismatched plugin, got $code"
 grep -qE "plugin ABI mismatch: the library was built for moreau plugin ABI [0-9]+, this moreau has ABI [0-9]+" "$work/bad.err" \
   || { cat "$work/bad.err" >&2; fail "no ABI message"; }
-echo "sdk install: external plugin built, loaded by name and validated; mismatched ABI refused"
+echo "sdk install: external force and law built, loaded by name and validated; mismatched ABI refused"
