@@ -318,7 +318,7 @@ void ContactStages::solve_with_laws(StepContext& c) {
     report_ = solver->solve(problem_, r_, u_);
     if (exporting) solved = r_;  // the answer in the solver's variables
     iterations += report_.iterations;
-    law_step_.from_solver(problem_, r_, u_);
+    law_step_.from_solver(problem_, r_, u_, report_.error);
     if (!law_step_.update(r_, u_)) break;
     if (solves == law_solves_per_step) {
       if (!laws_warned_)

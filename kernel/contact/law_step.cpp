@@ -1,6 +1,8 @@
 #include "law_step.hpp"
 
+#include <algorithm>
 #include <cmath>
+#include <moreau/contact_error.hpp>
 #include <moreau/contact_fields.hpp>
 #include <moreau/error.hpp>
 #include <moreau/factor_matrix.hpp>
@@ -162,8 +164,13 @@ void LawStep::set_compliance(LocalProblem& P) {
   for (Eigen::Index i = 0; i < n; ++i) P.W.coeffRef(i, i) = w_diagonal_[i] + compliance_[i];
 }
 
-void LawStep::from_solver(const LocalProblem& P, Eigen::VectorXd& r, Eigen::VectorXd& u) {
+void LawStep::from_solver(const LocalProblem& P, Eigen::VectorXd& r, Eigen::VectorXd& u, double error) {
   const int d = d_;
+  // A solve to error e leaves natural-map residuals up to e times the denominator: a
+  // sticking contact may show a slip velocity that large. Counting it as sliding would
+  // break bonds (and switch to dynamic friction) by the solver's tolerance, not the
+  // mechanics: a wall solved to 1e-3 would crumble where one solved to 1e-8 stands.
+  const double slip = std::max(1e-9, std::isfinite(error) ? error * error_denominator(P) : 0.0);
   r_solver_ = r;
   u_solver_ = u;
   r -= cohesion_;
@@ -177,7 +184,7 @@ void LawStep::from_solver(const LocalProblem& P, Eigen::VectorXd& r, Eigen::Vect
       ut += ua[k] * ua[k];
     }
     const double mu = P.mu[static_cast<Eigen::Index>(a)];
-    status_[a] = ra[0] > 0 ? ((std::sqrt(ut) > 1e-9 && std::sqrt(rt) >= mu * ra[0] * (1 - 1e-6)) ? 2 : 1) : 0;
+    status_[a] = ra[0] > 0 ? ((std::sqrt(ut) > slip && std::sqrt(rt) >= mu * ra[0] * (1 - 1e-6)) ? 2 : 1) : 0;
   }
 }
 

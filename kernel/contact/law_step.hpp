@@ -46,8 +46,10 @@ class LawStep {
   /// the problem (μ, q', κ in W and the factor) and r turned into r' (r: the true impulses,
   /// a warm start). The problem's W or factor must be in place.
   void to_solver(LocalProblem& problem, Eigen::VectorXd& r);
-  /// After a solve: r', u' kept for the status, r and u made true.
-  void from_solver(const LocalProblem& problem, Eigen::VectorXd& r, Eigen::VectorXd& u);
+  /// After a solve: r', u' kept for the status, r and u made true. `error`: the error
+  /// the solve reached (DESIGN §1, relative to error_denominator): a contact on its cone
+  /// slides only if its slip exceeds what that error leaves unresolved.
+  void from_solver(const LocalProblem& problem, Eigen::VectorXd& r, Eigen::VectorXd& u, double error);
   /// The laws' updates from (r, u); true when another solve is needed (a law that iterates
   /// is not consistent yet).
   bool update(const Eigen::VectorXd& r, const Eigen::VectorXd& u);
