@@ -1,9 +1,12 @@
 #!/usr/bin/env pvpython
 """Shows a moreau run in ParaView: bodies as their shapes, contact forces as arrows and the
 force network as tubes whose radius and colour follow the normal force (docs/output.md,
-"Viewer description").
+"Viewer description"). With bonded contact laws (docs/laws.md), the bonds over it: damaged
+ones as tubes from yellow to black (damage 0 to 1), broken ones as thick red tubes (while
+their grains are within the alert distance; farther apart, a contact and its bond are gone).
 
     pvbatch scripts/paraview_view.py OUT.xmf --png view.png     # the last frame, as an image
+    pvbatch scripts/paraview_view.py OUT.xmf --time 0.1 --png view.png   # the frame at t = 0.1 s
     pvpython scripts/paraview_view.py OUT.xmf --state view.pvsm # for File > Load State
 """
 import argparse
@@ -11,14 +14,17 @@ import os
 import xml.etree.ElementTree as ET
 
 from paraview.simple import (CellDatatoPointData, ColorBy, ExtractBlock, ExtractSurface, GetActiveViewOrCreate,
-                             Glyph, SaveScreenshot, SaveState, Show, Shrink, Tube, XDMFReader)
+                             GetColorTransferFunction, Glyph, SaveScreenshot, SaveState, Show, Shrink, Threshold, Tube,
+                             XDMFReader)
 
 
-def build(xmf):
+def build(xmf, at=None):
     # The legacy XDMF reader: the Xdmf3 readers give the point grids no cells.
     reader = XDMFReader(FileNames=[os.path.abspath(xmf)])
     view = GetActiveViewOrCreate('RenderView')
-    time = reader.TimestepValues[-1] if reader.TimestepValues else 0
+    times = list(reader.TimestepValues or [0])
+    # The last frame, or the first at or after the time asked for.
+    time = times[-1] if at is None else next((t for t in times if t >= at - 1e-12), times[-1])
     view.ViewTime = time
     reader.UpdatePipeline(time)  # the bounds are unset before
     bounds = reader.GetDataInformation().GetBounds()
@@ -55,6 +61,7 @@ def build(xmf):
         tubes_shown = Show(tubes, view)
         ColorBy(tubes_shown, ('POINTS', 'normal_force'))
         tubes_shown.SetScalarBarVisibility(view, True)
+        bonds(network, view, time, size)
     if bounds[5] - bounds[4] < 1e-12 * size:  # a 2D run
         view.InteractionMode = '2D'
     else:  # from the front, a little above, z up
@@ -66,13 +73,43 @@ def build(xmf):
     return view
 
 
+def bonds(network, view, time, size):
+    """Over the force network: damaged intact bonds (bond = 1, damage > 0) as tubes from
+    yellow to black (damage 0 to 1), broken bonds (bond = 2) as thick red tubes."""
+    network.UpdatePipeline(time)
+    cells = network.GetDataInformation().DataInformation.GetCellDataInformation()
+    names = [cells.GetArrayInformation(i).GetName() for i in range(cells.GetNumberOfArrays())]
+    if 'bond' not in names:
+        return
+
+    def tubes(low, high, array, radius):
+        picked = Threshold(Input=network, Scalars=['CELLS', array], LowerThreshold=low, UpperThreshold=high,
+                           ThresholdMethod='Between')
+        if array != 'bond':
+            picked = Threshold(Input=picked, Scalars=['CELLS', 'bond'], LowerThreshold=0.5, UpperThreshold=1.5,
+                               ThresholdMethod='Between')
+        return Show(Tube(Input=ExtractSurface(Input=Shrink(Input=picked, ShrinkFactor=1.0)), Radius=radius * size), view)
+
+    if 'damage' in names:
+        damaged = tubes(1e-3, 1.0, 'damage', 0.004)
+        ColorBy(damaged, ('CELLS', 'damage'))
+        lut = GetColorTransferFunction('damage')
+        lut.RGBPoints = [0.0, 1.0, 0.85, 0.1, 1.0, 0.0, 0.0, 0.0]
+        lut.RescaleTransferFunction(0.0, 1.0)
+        damaged.SetScalarBarVisibility(view, True)
+    broken = tubes(1.5, 2.5, 'bond', 0.006)
+    ColorBy(broken, None)
+    broken.AmbientColor = broken.DiffuseColor = [0.9, 0.05, 0.05]
+
+
 def main():
     parser = argparse.ArgumentParser(description=__doc__, formatter_class=argparse.RawDescriptionHelpFormatter)
     parser.add_argument('xmf', help='the OUT.xmf beside a run\'s OUT.h5')
-    parser.add_argument('--png', help='save the last frame to this image')
+    parser.add_argument('--png', help='save the last frame (or the one at --time) to this image')
+    parser.add_argument('--time', type=float, help='show the frame at this time (s) instead of the last')
     parser.add_argument('--state', help='save a ParaView state file (File > Load State)')
     args = parser.parse_args()
-    view = build(args.xmf)
+    view = build(args.xmf, args.time)
     if args.png:
         SaveScreenshot(args.png, view, ImageResolution=[1200, 900])
     if args.state:
