@@ -25,6 +25,8 @@ import subprocess
 import sys
 import tempfile
 
+from make_law_scenes import write_scene  # the scene as JSON, one body per line
+
 MILANKOVITCH = 0.1075
 
 
@@ -56,18 +58,6 @@ def scene(t_over_r, voussoirs=36, radius=1.0, friction=0.8, duration=3.0, step=5
             "detection": {"alert": 1e-3},
             "solver": {"type": "auto", "tolerance": 1e-8},
             "output": {"every": every}, "bodies": bodies}
-
-
-def write_scene(s, path):
-    """The scene as JSON, one body per line (readable, diffable)."""
-    lines = []
-    for key, value in s.items():
-        if key == "bodies":
-            lines.append(' "bodies": [\n  ' + ",\n  ".join(json.dumps(b) for b in value) + "\n ]")
-        else:
-            lines.append(" " + json.dumps(key) + ": " + json.dumps(value))
-    with open(path, "w") as f:
-        f.write("{\n" + ",\n".join(lines) + "\n}\n")
 
 
 def run(moreau, s, folder):

@@ -42,11 +42,32 @@ struct Phase {
   double duration, sign;
 };
 
+/// A block glued on a fixed one (2D: two points of area 0.1 m; 3D: four of 0.01 m²) by a
+/// czm of G_Ic = G and G_IIc = `mode_II_energy`, moved by `drivers` for `duration`.
+std::string glued_blocks(int dim, double duration, const std::string& drivers, double mode_II_energy) {
+  const double area = dim == 2 ? 0.1 : 0.01;
+  std::ostringstream s;
+  s.precision(17);
+  s << R"({"format": "moreau-scene/1", "dimension": )" << dim << R"(, "time": {"step": 1e-3, "duration": )" << duration << R"(},
+  "gravity": )" << (dim == 2 ? "[0, 0]" : "[0, 0, 0]") << R"(, "materials": {"m": {"density": 1000}},
+  "laws": {"glue": {"type": "czm", "normal_stiffness": 1e10, "tangential_stiffness": 1e10, "normal_strength": 1e6,
+    "shear_strength": 1e6, "mode_I_energy": )" << G << R"(, "mode_II_energy": )" << mode_II_energy << R"(, "area": )" << area
+    << R"(, "friction": 0.5}},
+  "interactions": [{"groups": ["top", "bottom"], "law": "glue"}], "detection": {"alert": 1e-3},
+  "drivers": [)" << drivers << R"(],
+  "solver": {"type": "nlgs", "tolerance": 1e-12, "max_iterations": 500}, "output": {"every": 1}, "bodies": [)";
+  if (dim == 2)
+    s << R"({"name": "bottom", "fixed": true, "position": [0, -0.05], "contactors": [{"shape": "polygon", "vertices": [[-0.1, -0.05], [0.1, -0.05], [0.1, 0.05], [-0.1, 0.05]], "group": "bottom"}]},
+      {"name": "top", "material": "m", "position": [0, 0.05], "contactors": [{"shape": "polygon", "vertices": [[-0.1, -0.05], [0.1, -0.05], [0.1, 0.05], [-0.1, 0.05]], "group": "top"}]}]})";
+  else
+    s << R"({"name": "bottom", "fixed": true, "position": [0, 0, -0.05], "contactors": [{"shape": "box", "size": [0.2, 0.2, 0.1], "group": "bottom"}]},
+      {"name": "top", "material": "m", "position": [0, 0, 0.05], "contactors": [{"shape": "box", "size": [0.2, 0.2, 0.1], "group": "top"}]}]})";
+  return s.str();
+}
+
 /// Runs a 2D (two points of area 0.1 m) or 3D (four of 0.01 m²) glued block moved along
 /// `axis` (1: normal, 0: tangential) by the phases; checks the law and returns the work.
 void check_mode(int dim, int axis, const std::vector<Phase>& phases) {
-  std::ostringstream s;
-  s.precision(17);
   const double area = dim == 2 ? 0.1 : 0.01;
   const int points = dim == 2 ? 2 : 4;
   const int up = dim - 1;  // the normal axis (y in 2D, z in 3D)
@@ -63,20 +84,7 @@ void check_mode(int dim, int axis, const std::vector<Phase>& phases) {
             << (dim == 2 ? "0" : "[0, 0, 0]") << R"(, "start": )" << t << R"(, "end": )" << t + phases[i].duration << "}";
     t += phases[i].duration;
   }
-  s << R"({"format": "moreau-scene/1", "dimension": )" << dim << R"(, "time": {"step": 1e-3, "duration": )" << t << R"(},
-  "gravity": )" << (dim == 2 ? "[0, 0]" : "[0, 0, 0]") << R"(, "materials": {"m": {"density": 1000}},
-  "laws": {"glue": {"type": "czm", "normal_stiffness": 1e10, "tangential_stiffness": 1e10, "normal_strength": 1e6,
-    "shear_strength": 1e6, "mode_I_energy": 200, "mode_II_energy": 200, "area": )" << area << R"(, "friction": 0.5}},
-  "interactions": [{"groups": ["top", "bottom"], "law": "glue"}], "detection": {"alert": 1e-3},
-  "drivers": [)" << drivers.str() << R"(],
-  "solver": {"type": "nlgs", "tolerance": 1e-12, "max_iterations": 500}, "output": {"every": 1}, "bodies": [)";
-  if (dim == 2)
-    s << R"({"name": "bottom", "fixed": true, "position": [0, -0.05], "contactors": [{"shape": "polygon", "vertices": [[-0.1, -0.05], [0.1, -0.05], [0.1, 0.05], [-0.1, 0.05]], "group": "bottom"}]},
-      {"name": "top", "material": "m", "position": [0, 0.05], "contactors": [{"shape": "polygon", "vertices": [[-0.1, -0.05], [0.1, -0.05], [0.1, 0.05], [-0.1, 0.05]], "group": "top"}]}]})";
-  else
-    s << R"({"name": "bottom", "fixed": true, "position": [0, 0, -0.05], "contactors": [{"shape": "box", "size": [0.2, 0.2, 0.1], "group": "bottom"}]},
-      {"name": "top", "material": "m", "position": [0, 0, 0.05], "contactors": [{"shape": "box", "size": [0.2, 0.2, 0.1], "group": "top"}]}]})";
-  SceneRun run = run_scene("czm_" + std::to_string(dim) + "d_mode_" + (axis == 1 ? "I" : "II"), s.str());
+  SceneRun run = run_scene("czm_" + std::to_string(dim) + "d_mode_" + (axis == 1 ? "I" : "II"), glued_blocks(dim, t, drivers.str(), G));
 
   const double x0 = run.at(run.frames.front(), "position")[dim + moved];
   const double peak = strength * area * points;
@@ -119,6 +127,47 @@ void check_mode(int dim, int axis, const std::vector<Phase>& phases) {
   EXPECT_NEAR(work, expected_work, 1e-4 * expected_work);
 }
 
+/// Mixed mode (2D): the block pulled at 45° between the normal and the tangent, G_IIc = 2
+/// G_Ic. With k_n = k_t and σ_max = τ_max the traction stays along the opening, the
+/// normalised opening's direction is a_n² = a_t² = 1/2, and the linear rule gives
+/// 1/λ_f = a_n²/λ_fn + a_t²/λ_ft (λ_fn = 2 G_Ic k/σ² = 4, λ_ft = 8: λ_f = 16/3): the
+/// interface dissipates ½ σ δ_0 λ_f = 266.67 J/m², half in each mode, so that
+/// G_I/G_Ic + G_II/G_IIc = 1. Work by trapezoids as above (two kinks: 1e-4 relative).
+void check_mixed_mode() {
+  const double area = 0.1, GII = 2 * G, c = std::sqrt(0.5);
+  std::ostringstream drivers;
+  drivers.precision(17);
+  drivers << R"({"body": "top", "velocity": [)" << c * v << ", " << c * v << R"(], "angular_velocity": 0})";
+  SceneRun run = run_scene("czm_2d_mixed_mode", glued_blocks(2, 0.6, drivers.str(), GII));
+  const auto p0 = run.at(run.frames.front(), "position");
+  double work_I = 0, work_II = 0, last[2] = {0, 0}, last_force[2] = {0, 0};
+  bool broken = false;
+  for (std::size_t f = 1; f < run.frames.size(); ++f) {
+    const std::string& fr = run.frames[f];
+    const auto p = run.at(fr, "position");
+    const double delta[2] = {p[2] - p0[2], p[3] - p0[3]};  // tangential (x), normal (y)
+    const auto frc = run.at(fr, "contacts/force");
+    const auto bodies = run.at(fr, "contacts/bodies");
+    double force[2] = {0, 0};  // opposing the motion, on the top block
+    for (std::size_t k = 0; k < bodies.size() / 2; ++k)
+      for (int i = 0; i < 2; ++i) force[i] -= (bodies[2 * k] == 1 ? 1 : -1) * frc[2 * k + i];
+    work_II += 0.5 * (force[0] + last_force[0]) * (delta[0] - last[0]);
+    work_I += 0.5 * (force[1] + last_force[1]) * (delta[1] - last[1]);
+    for (int i = 0; i < 2; ++i) last[i] = delta[i], last_force[i] = force[i];
+    const auto damage = run.at(fr, "contacts/damage");
+    broken = !damage.empty() && damage[0] == 1;
+  }
+  const double d0 = strength / k, lf = 1 / (0.5 / (2 * G * k / (strength * strength)) + 0.5 / (2 * GII * k / (strength * strength)));
+  const double expected = 0.5 * strength * d0 * lf * area * 2;  // two points
+  const double rule = work_I / (G * area * 2) + work_II / (GII * area * 2);
+  std::printf("2D mixed mode (45 deg, G_IIc = 2 G_Ic): work %.9g J (expected %.9g J, relative %.2e), mode I %.6g J, mode II "
+              "%.6g J, G_I/G_Ic + G_II/G_IIc = %.9f; broken %d\n", work_I + work_II, expected,
+              (work_I + work_II) / expected - 1, work_I, work_II, rule, broken);
+  EXPECT_TRUE(broken);
+  EXPECT_NEAR(work_I + work_II, expected, 1e-4 * expected);
+  EXPECT_NEAR(rule, 1.0, 1e-4);
+}
+
 }  // namespace
 
 // Load to δ = 2δ_0 (D = 2/3), unload to δ_0/2, reload to rupture at δ_f = 4δ_0 and beyond.
@@ -127,3 +176,4 @@ const std::vector<Phase> path = {{0.2, 1}, {0.15, -1}, {0.4, 1}};
 TEST(CohesiveZone, ModeIFollowsTheLawDissipatesGcTimesAreaAndUnloadsAlongTheDamagedStiffness) { check_mode(2, 1, path); }
 TEST(CohesiveZone, ModeIIFollowsTheLawDissipatesGcTimesAreaAndUnloadsAlongTheDamagedStiffness) { check_mode(2, 0, path); }
 TEST(CohesiveZone, ModeIBetweenBoxesFollowsTheLaw) { check_mode(3, 1, path); }
+TEST(CohesiveZone, MixedModeFollowsTheLinearEnergyRule) { check_mixed_mode(); }
