@@ -2,7 +2,7 @@
 """Shows a moreau run in ParaView: bodies as their shapes, contact forces as arrows and the
 force network as tubes whose radius and colour follow the normal force (docs/output.md,
 "Viewer description"). With bonded contact laws (docs/laws.md), the bonds over it: damaged
-ones as tubes from yellow to black (damage 0 to 1), broken ones as thick red tubes (while
+ones as tubes from yellow to black (damage 0 to 1), broken ones as thick magenta tubes (while
 their grains are within the alert distance; farther apart, a contact and its bond are gone).
 
     pvbatch scripts/paraview_view.py OUT.xmf --png view.png     # the last frame, as an image
@@ -75,7 +75,7 @@ def build(xmf, at=None):
 
 def bonds(network, view, time, size):
     """Over the force network: damaged intact bonds (bond = 1, damage > 0) as tubes from
-    yellow to black (damage 0 to 1), broken bonds (bond = 2) as thick red tubes."""
+    yellow to black (damage 0 to 1), broken bonds (bond = 2) as thick magenta tubes."""
     network.UpdatePipeline(time)
     cells = network.GetDataInformation().DataInformation.GetCellDataInformation()
     names = [cells.GetArrayInformation(i).GetName() for i in range(cells.GetNumberOfArrays())]
@@ -99,7 +99,7 @@ def bonds(network, view, time, size):
         damaged.SetScalarBarVisibility(view, True)
     broken = tubes(1.5, 2.5, 'bond', 0.006)
     ColorBy(broken, None)
-    broken.AmbientColor = broken.DiffuseColor = [0.9, 0.05, 0.05]
+    broken.AmbientColor = broken.DiffuseColor = [1.0, 0.0, 1.0]  # magenta: not on the force or damage maps
 
 
 def main():
