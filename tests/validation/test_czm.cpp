@@ -177,3 +177,4 @@ TEST(CohesiveZone, ModeIFollowsTheLawDissipatesGcTimesAreaAndUnloadsAlongTheDama
 TEST(CohesiveZone, ModeIIFollowsTheLawDissipatesGcTimesAreaAndUnloadsAlongTheDamagedStiffness) { check_mode(2, 0, path); }
 TEST(CohesiveZone, ModeIBetweenBoxesFollowsTheLaw) { check_mode(3, 1, path); }
 TEST(CohesiveZone, MixedModeFollowsTheLinearEnergyRule) { check_mixed_mode(); }
+TEST(CohesiveZone, ModeIIBetweenBoxesKeepsItsBondsAsTheFacesShear) { check_mode(3, 0, path); }
