@@ -7,7 +7,8 @@ namespace moreau::kernel {
 void StageTimer::print(std::ostream& os, long steps) const {
   const double t = total();
   char line[160];
-  std::snprintf(line, sizeof line, "stage wall time over %ld steps (stages with no work are skipped):\n", steps);
+  std::snprintf(line, sizeof line, "stage %s time over %ld steps (stages with no work are skipped):\n",
+                StageClock::cpu() ? "CPU" : "wall", steps);
   os << line;
   for (int i = 0; i < stage_count; ++i) {
     if (!active_[i]) continue;

@@ -1,16 +1,45 @@
 #pragma once
 // Wall time per stage over a run, printed as shares at the end. Only stages that did
-// work are timed (and shown).
+// work are timed (and shown). With the environment variable MOREAU_STAGE_CLOCK=cpu the
+// stages are timed in the CPU time of the running thread instead: on a shared machine a
+// benchmark (scripts/bench_scenes.py) then measures the work of each stage, not the time
+// other processes held the core.
+#include <time.h>
+
 #include <array>
 #include <chrono>
+#include <cstdlib>
+#include <cstring>
 #include <moreau/stage.hpp>
 #include <ostream>
 
 namespace moreau::kernel {
 
+/// steady_clock, or the thread's CPU clock when MOREAU_STAGE_CLOCK=cpu (read once).
+struct StageClock {
+  using duration = std::chrono::nanoseconds;
+  using rep = duration::rep;
+  using period = duration::period;
+  using time_point = std::chrono::time_point<StageClock>;
+  static constexpr bool is_steady = true;
+  static bool cpu() {
+    static const bool on = [] {
+      const char* v = std::getenv("MOREAU_STAGE_CLOCK");
+      return v && std::strcmp(v, "cpu") == 0;
+    }();
+    return on;
+  }
+  static time_point now() {
+    if (!cpu()) return time_point(std::chrono::duration_cast<duration>(std::chrono::steady_clock::now().time_since_epoch()));
+    timespec t{};
+    clock_gettime(CLOCK_THREAD_CPUTIME_ID, &t);
+    return time_point(duration(static_cast<rep>(t.tv_sec) * 1000000000 + t.tv_nsec));
+  }
+};
+
 class StageTimer {
  public:
-  using clock = std::chrono::steady_clock;
+  using clock = StageClock;
   void add(Stage s, clock::duration d) {
     seconds_[static_cast<int>(s)] += std::chrono::duration<double>(d).count();
     active_[static_cast<int>(s)] = true;
