@@ -14,6 +14,7 @@ std::string scientific(double x) {
 
 void SolveLog::note_miss(long step, const SolverReport& report, const std::string& bodies) {
   ++misses_;
+  if (missed_.size() < listed_misses) missed_.push_back({step, report.error, bodies});
   if (first_miss_ >= 0) return;
   first_miss_ = step;
   // Once, at the first miss: the user learns now, not after hours, that the run is not
@@ -37,6 +38,11 @@ void SolveLog::print_summary(std::ostream& err) const {
       << (tolerance > 0 ? " " + scientific(tolerance) : std::string()) << " (first at step " << first_miss_
       << "); worst error " << scientific(worst_error_) << " at step " << worst_step_;
   if (!worst_bodies_.empty()) err << ", largest residual at the contact of " << worst_bodies_;
+  err << "\n";
+  err << "  missed steps (error, contact with the largest residual):";
+  for (const Miss& m : missed_)
+    err << "\n    step " << m.step << ": " << scientific(m.error) << (m.bodies.empty() ? std::string() : ", " + m.bodies);
+  if (misses_ > static_cast<long>(missed_.size())) err << "\n    … and " << misses_ - static_cast<long>(missed_.size()) << " more";
   err << "\n";
 }
 

@@ -7,6 +7,7 @@
 #include <iosfwd>
 #include <moreau/solver.hpp>
 #include <string>
+#include <vector>
 
 namespace moreau::kernel {
 
@@ -36,14 +37,23 @@ class SolveLog {
   long misses() const { return misses_; }
   double worst_error() const { return worst_error_; }
   long worst_step() const { return worst_step_; }
-  /// The end-of-run lines (nothing when no step had contacts).
+  /// The end-of-run lines (nothing when no step had contacts). A run that missed lists
+  /// its first `listed_misses` missed steps, each with its error and the bodies of the
+  /// contact with the largest residual (issue 11: which bodies and steps failed).
   void print_summary(std::ostream& err) const;
+  static constexpr std::size_t listed_misses = 20;
 
  private:
   void note_miss(long step, const SolverReport& report, const std::string& bodies);
   long solves_ = 0, misses_ = 0, first_miss_ = -1, worst_step_ = -1;
   double worst_error_ = 0;
   std::string worst_bodies_;
+  struct Miss {
+    long step;
+    double error;
+    std::string bodies;
+  };
+  std::vector<Miss> missed_;  ///< the first listed_misses misses
 };
 
 }  // namespace moreau::kernel

@@ -135,6 +135,16 @@ TEST(Stopping, MassRatioOfAMillionIsSolvedOrSaidLoudly) {
     EXPECT_LE(missed, 25) << "steps above the tolerance out of 400: " << r.err;
     EXPECT_NE(r.err.find("largest residual at the contact of \"d"), std::string::npos) << r.err;
     EXPECT_NE(r.err.find("warning: step "), std::string::npos) << "the first miss is said at once: " << r.err;
+    // Which steps and bodies failed (issue 11): the summary lists each missed step (up to
+    // 20) with its error and the two bodies of its worst contact.
+    const auto list = r.err.find("missed steps (error, contact with the largest residual):");
+    ASSERT_NE(list, std::string::npos) << r.err;
+    long listed = 0;
+    for (auto p = r.err.find("\n    step ", list); p != std::string::npos; p = r.err.find("\n    step ", p + 1)) {
+      ++listed;
+      EXPECT_NE(r.err.substr(p, r.err.find('\n', p + 1) - p).find(", \"d"), std::string::npos) << "bodies named: " << r.err;
+    }
+    EXPECT_EQ(listed, std::min<long>(missed, 20)) << r.err;
   }
   const auto frames = frame_names((dir / "out.h5").string());
   const auto pos = read_doubles((dir / "out.h5").string(), "/frames/" + frames.back() + "/position");
