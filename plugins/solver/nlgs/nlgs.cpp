@@ -14,6 +14,7 @@
 
 #include "nlgs_body_sweep.hpp"
 #include "nlgs_sweep.hpp"
+#include "sweep_order.hpp"
 
 namespace {
 using namespace moreau;
@@ -25,7 +26,10 @@ class Nlgs : public Solver {
     s.number("tolerance", "target DESIGN §1 error").gt(0).fallback(1e-6);
     s.integer("max_iterations", "maximum sweeps").min(1).fallback(1000);
     s.number("relaxation", "relaxation factor omega").gt(0).lt(2).fallback(1.0);
-    s.string("ordering", "contact order in a sweep").one_of({"given", "reverse", "shuffle"}).fallback("given");
+    s.string("ordering", "contact order in a sweep: \"fixed_last\" (the given order with the contacts against fixed bodies "
+                         "last; as given for FCLib files), \"given\", \"reverse\", \"shuffle\" (seeded)")
+        .one_of({"fixed_last", "given", "reverse", "shuffle"})
+        .fallback("fixed_last");
     s.integer("seed", "seed of the shuffled order").min(0).fallback(1);
     s.integer("check_every", "sweeps between two evaluations of the error (each costs about one sweep)").min(1).fallback(5);
     s.string("exchange", "how contacts see each other: through W's blocks (\"w\"), through body velocities "
@@ -76,6 +80,7 @@ class Nlgs : public Solver {
       sweeper_.prepare(P);
     order_.resize(nc);
     std::iota(order_.begin(), order_.end(), 0);
+    if (ordering_ == "fixed_last") nlgs::fixed_last_order(P, order_);
     if (ordering_ == "reverse") std::reverse(order_.begin(), order_.end());
     std::mt19937 rng(seed_);
     for (long it = 1; it <= max_it_; ++it) {
