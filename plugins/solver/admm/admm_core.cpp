@@ -34,7 +34,7 @@ void de_saxce(const LocalProblem& P, const Eigen::VectorXd& u, Eigen::VectorXd& 
 bool Admm::factorise(double rho) {
   ++factorisations_;
   Eigen::SparseMatrix<double> A = W_ + rho * D_;
-  const double n = static_cast<double>(A.rows()), unit = std::max<double>(1.0, static_cast<double>(W_.nonZeros()));
+  const double n = static_cast<double>(A.rows());
   bool ok;
   double nl, nu;
   if (symmetric_) {
@@ -51,10 +51,9 @@ bool Admm::factorise(double rho) {
     nl = ok ? static_cast<double>(lu_.nnzL()) : 0.0;
     nu = ok ? static_cast<double>(lu_.nnzU()) : 0.0;
   }
-  // Counted work (plugins/solver/work.hpp): the factorisation about nnz(L) nnz(U) / n,
-  // each later solve 2 (nnz(L) + nnz(U)), in products by W.
-  factorisation_units_ += nl * nu / std::max(n, 1.0) / unit;
-  solve_units_ = 2 * (nl + nu) / unit;
+  // Counted work (plugins/solver/work.hpp): the factorisation, and each later solve.
+  factorisation_units_ += WorkCosts::factorisation(nl, nu, n);
+  solve_units_ = WorkCosts::triangular_solves(nl, nu);
   return ok;
 }
 
@@ -70,50 +69,55 @@ SolverReport Admm::solve(const LocalProblem& P, const Options& o, Eigen::VectorX
   factorisations_ = 0;
   factorisation_units_ = 0;
   WorkMeter meter(o.max_work, o.work);
+  const WorkCosts cost = WorkCosts::of(P, false);
   if (r.size() != n || !r.allFinite()) r = Eigen::VectorXd::Zero(n);
   if (nc == 0) {
     u = P.q;
     rep.converged = true;
     return rep;
   }
-  // Per-contact weights D (a scalar per contact keeps the projection on K exact).
-  Eigen::VectorXd D(n);
-  double mean_diag = 0;
-  for (Eigen::Index i = 0; i < n; ++i) mean_diag += P.W.coeff(i, i);
-  mean_diag /= static_cast<double>(n);
-  if (!(mean_diag > 0)) mean_diag = 1;
-  for (Eigen::Index a = 0; a < nc; ++a) {
-    double t = 0;
-    for (int k = 0; k < d; ++k) t += P.W.coeff(a * d + k, a * d + k);
-    t /= d;
-    if (!(t > 1e-12 * mean_diag)) t = mean_diag;
-    for (int k = 0; k < d; ++k) D[a * d + k] = t;
-  }
-  W_ = P.W;  // column-major copy for the factorisation
-  {
-    Eigen::SparseMatrix<double> T = W_.transpose();
-    symmetric_ = (W_ - T).norm() <= 1e-14 * W_.norm();
-  }
-  D_.resize(n, n);
-  D_.setIdentity();
-  for (Eigen::Index i = 0; i < n; ++i) D_.coeffRef(i, i) = D[i];
-  analysed_ = false;
+  const bool resuming = o.resume && state_.z.size() == n;
   double rho = o.rho;
-  if (!(rho > 0)) {
-    // A few hundredths of ‖D^-1/2 W D^-1/2‖∞ (the largest row sum of |W| relative to D).
-    double m = 0;
-    for (Eigen::Index i = 0; i < n; ++i) {
-      double s = 0;
-      for (Eigen::SparseMatrix<double, Eigen::RowMajor>::InnerIterator it(P.W, i); it; ++it)
-        s += std::fabs(it.value()) / std::sqrt(D[i] * D[it.col()]);
-      m = std::max(m, s);
+  if (!resuming) {  // resumed, the run keeps its weights, W's copy and its factorisation
+    meter.add(WorkCosts::assembly(static_cast<double>(P.W.nonZeros()), static_cast<double>(n)));  // W, D, ρ, symmetry: a few passes over W
+    // Per-contact weights D (a scalar per contact keeps the projection on K exact).
+    Eigen::VectorXd& D = weights_;
+    D.resize(n);
+    double mean_diag = 0;
+    for (Eigen::Index i = 0; i < n; ++i) mean_diag += P.W.coeff(i, i);
+    mean_diag /= static_cast<double>(n);
+    if (!(mean_diag > 0)) mean_diag = 1;
+    for (Eigen::Index a = 0; a < nc; ++a) {
+      double t = 0;
+      for (int k = 0; k < d; ++k) t += P.W.coeff(a * d + k, a * d + k);
+      t /= d;
+      if (!(t > 1e-12 * mean_diag)) t = mean_diag;
+      for (int k = 0; k < d; ++k) D[a * d + k] = t;
     }
-    rho = 0.03 * (m > 0 ? m : 1.0);
+    W_ = P.W;  // column-major copy for the factorisation
+    {
+      Eigen::SparseMatrix<double> T = W_.transpose();
+      symmetric_ = (W_ - T).norm() <= 1e-14 * W_.norm();
+    }
+    D_.resize(n, n);
+    D_.setIdentity();
+    for (Eigen::Index i = 0; i < n; ++i) D_.coeffRef(i, i) = D[i];
+    analysed_ = false;
+    if (!(rho > 0)) {
+      // A few hundredths of ‖D^-1/2 W D^-1/2‖∞ (the largest row sum of |W| relative to D).
+      double m = 0;
+      for (Eigen::Index i = 0; i < n; ++i) {
+        double s = 0;
+        for (Eigen::SparseMatrix<double, Eigen::RowMajor>::InnerIterator it(P.W, i); it; ++it)
+          s += std::fabs(it.value()) / std::sqrt(D[i] * D[it.col()]);
+        m = std::max(m, s);
+      }
+      rho = 0.03 * (m > 0 ? m : 1.0);
+    }
   }
-
+  const Eigen::VectorXd& D = weights_;
   const Eigen::VectorXd sqrtD = D.cwiseSqrt();
   Eigen::VectorXd z(n), zk(n), zh(n), xi(n), xik(n), xih(n), s(n), rhs(n), x(n), best(n), tmp(n);
-  const bool resuming = o.resume && state_.z.size() == n;
   if (resuming) {
     z = state_.z, zk = state_.zk, zh = state_.zh, xi = state_.xi, xik = state_.xik, xih = state_.xih, x = state_.x;
     rho = state_.rho;
@@ -122,6 +126,7 @@ SolverReport Admm::solve(const LocalProblem& P, const Options& o, Eigen::VectorX
   }
   u = P.W * z + P.q;
   double err = natural_map_error(P, z, u);
+  meter.add(cost.product + cost.error);
   best = z;
   double best_err = err;
   rep.error = err;
@@ -140,7 +145,7 @@ SolverReport Admm::solve(const LocalProblem& P, const Options& o, Eigen::VectorX
     xih = xi;
     x = z;  // r iterate
   }
-  if (!factorise(rho)) {
+  if (!resuming && !factorise(rho)) {
     r = best;
     u = P.W * r + P.q;
     rep.error = natural_map_error(P, r, u);
@@ -163,6 +168,9 @@ SolverReport Admm::solve(const LocalProblem& P, const Options& o, Eigen::VectorX
     const double dual = rho * (zh - z).cwiseProduct(sqrtD).norm();
     u = P.W * z + P.q;
     err = natural_map_error(P, z, u);
+    // Two products by W, the solves, the error, a dozen vector passes, new factorisations.
+    meter.add(2 * cost.product + solve_units_ + cost.error + 6 * cost.vector + factorisation_units_);
+    factorisation_units_ = 0;
     if (!std::isfinite(err) || !std::isfinite(primal) || !std::isfinite(dual)) break;
     if (err < best_err) {
       best_err = err;
@@ -174,8 +182,6 @@ SolverReport Admm::solve(const LocalProblem& P, const Options& o, Eigen::VectorX
       const auto h = static_cast<long>(best_hist.size());
       if (h > o.stall_window && best_err > o.stall_factor * best_hist[h - 1 - o.stall_window]) break;
     }
-    meter.add(2 + solve_units_ + factorisation_units_);  // two products by W, the solves, new factorisations
-    factorisation_units_ = 0;
     if (meter.exhausted()) break;
     const double e = primal * primal + dual * dual;
     if (o.acceleration && e < o.restart * e_k) {

@@ -54,6 +54,7 @@ class Admm {
   bool factorise(double rho);
   void solve_linear(const Eigen::VectorXd& b, Eigen::VectorXd& x);
   Eigen::SparseMatrix<double> W_, D_;
+  Eigen::VectorXd weights_;  ///< D's diagonal (a scalar per contact)
   bool symmetric_ = true;
   Eigen::SimplicialLDLT<Eigen::SparseMatrix<double>> ldlt_;
   Eigen::SparseLU<Eigen::SparseMatrix<double>> lu_;

@@ -29,6 +29,7 @@ void de_saxce_add(const LocalProblem& P, Eigen::VectorXd& u) {
 class WProduct {
  public:
   explicit WProduct(const LocalProblem& P) : P_(P), through_factor_(P.W.rows() != P.q.size() && P.factor.present()) {}
+  bool through_factor() const { return through_factor_; }
 
   void apply(const Eigen::VectorXd& x, Eigen::VectorXd& out) {
     if (!through_factor_) {
@@ -96,15 +97,22 @@ SolverReport solve(const LocalProblem& P, const Options& o, Eigen::VectorXd& r, 
   const Eigen::VectorXd Dinv = D.cwiseInverse();
 
   Eigen::VectorXd x(n), Wx(n), y(n), Wy(n), xn(n), Wxn(n), g(n), dl(n), Wd(n), tmp(n), best(n);
-  project_all(P, r, x);
-  W.apply(x, Wx);
-  y = x;
-  Wy = Wx;
+  double L = 1, theta = 1;
+  WorkMeter meter(o.max_work, o.work);
+  const WorkCosts cost = WorkCosts::of(P, W.through_factor());
+  if (o.resume && o.state && o.state->x.size() == n) {
+    State& st = *o.state;
+    x = st.x, y = st.y, Wx = st.Wx, Wy = st.Wy, L = st.L, theta = st.theta;
+  } else {
+    project_all(P, r, x);
+    W.apply(x, Wx);
+    y = x;
+    Wy = Wx;
+  }
   u = Wx + P.q;
   double best_err = natural_map_error(P, x, u);
   best = x;
-  double L = 1, theta = 1;
-  WorkMeter meter(o.max_work, o.work);
+  meter.add((o.resume ? 0 : cost.product) + cost.error + 2 * cost.vector);  // the start's error
   for (long it = 1; it <= o.max_iterations && best_err > o.tolerance; ++it) {
     rep.iterations = it;
     g = Wy + P.q;
@@ -145,12 +153,14 @@ SolverReport solve(const LocalProblem& P, const Options& o, Eigen::VectorXd& r, 
       best_err = e;
       best = x;
     }
-    meter.add(1 + backtracks);  // one product by W, and one per backtrack
+    meter.add((1 + backtracks) * cost.product + cost.error + 8 * cost.vector);  // a product, one per backtrack
     if (meter.exhausted()) break;
   }
+  if (o.state) *o.state = State{x, y, Wx, Wy, L, theta};
   r = best;
   W.apply(r, u);
   u += P.q;
+  meter.add(cost.product);
   rep.error = natural_map_error(P, r, u);
   rep.converged = rep.error <= o.tolerance;
   return rep;

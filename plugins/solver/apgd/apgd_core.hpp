@@ -15,6 +15,12 @@
 
 namespace moreau::apgd {
 
+/// Where a run stopped, so that a later call can continue it (`auto` runs APGD in slices).
+struct State {
+  Eigen::VectorXd x, y, Wx, Wy;
+  double L = 1, theta = 1;
+};
+
 struct Options {
   double tolerance = 1e-6;
   long max_iterations = 10000;
@@ -24,6 +30,10 @@ struct Options {
   /// is added to *work when given (plugins/solver/work.hpp). Used by `auto`.
   double max_work = 0;
   double* work = nullptr;
+  /// When given: the run is saved there on exit, and continued from it when `resume` is
+  /// set and it holds a run of this problem's size (the start r is then ignored).
+  State* state = nullptr;
+  bool resume = false;
 };
 
 SolverReport solve(const LocalProblem& P, const Options& o, Eigen::VectorXd& r, Eigen::VectorXd& u);

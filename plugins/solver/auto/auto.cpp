@@ -1,24 +1,33 @@
 // `auto`: the solver to use when one does not know which. A portfolio of member methods
-// (NLGS; regularised semismooth Newton, twice, and ADMM when a factorisation of W fits;
-// APGD when it does not) that shares the time between them from what it measures while
-// solving: each member's progress per second (ln of the error gained per second of its
-// own time) and the time the other members took on earlier problems of the run.
+// (NLGS, APGD; regularised semismooth Newton, twice, and ADMM when a factorisation of W
+// fits) that shares counted work between them (plugins/solver/work.hpp: a deterministic
+// cost model in nanosecond-equivalents, so decisions are the same on every run).
 //
-// 1. NLGS first, on exactly the `nlgs` schedule (error at sweep 1, then every
-//    `check_every` sweeps; through body velocities in the time-stepper): a warm-started
-//    step that NLGS finishes costs what `nlgs` costs. NLGS keeps going while its measured
-//    rate says it will finish within the time spent so far, or within what the other
-//    members took on earlier problems of this run (per contact), whichever is larger.
-// 2. Otherwise the members take turns in time slices that double: the member whose last
-//    rate finishes soonest gets the time spent so far; while it would not finish within
-//    that, an untried member, or one that has had under a fifth of the time, gets a quarter
-//    of it first, to measure its rate. NLGS, APGD and the first Newton start from the
+// Over the solves of a run (the time-stepper's), it remembers each member's work per
+// contact to converge from the warm start:
+// 0. The member with the lowest remembered work (the incumbent) goes first; NLGS when
+//    nothing is known. Every few solves (4, doubling after each loss, at most 256) one other
+//    member is tried first with the incumbent's work as its budget: if it converges within
+//    that, it is the cheaper one and takes over.
+// 1. NLGS runs on exactly the `nlgs` schedule (error at sweep 1, then every `check_every`
+//    sweeps; through body velocities in the time-stepper), so a step that NLGS finishes
+//    costs what `nlgs` costs. It keeps going while its measured rate says it finishes
+//    within twice the work spent so far or twice another member's remembered work. Another
+//    incumbent gets three times its remembered work.
+// 2. Otherwise the members take turns in slices that double: the member whose last
+//    measured rate finishes soonest gets the work spent so far; while it would not finish
+//    within that, an untried member (cheapest iteration first; Newton once its first steps
+//    cost at most a quarter of the work spent, or sooner when the others' rates say they
+//    need more than Newton usually does), or one that has had under a fifth of the work,
+//    gets a quarter of it to measure its rate. NLGS, APGD and the first Newton start from the
 //    best iterate; the second Newton and ADMM continue their own runs from the warm start,
 //    as each would alone (Newton from NLGS's iterate can crawl where alone it converges).
 // 3. The answer is the best iterate of all; the solve ends at the tolerance, when every
 //    member has used `max_iterations` of its own (Newton at most 200), or had three slices
 //    in a row that gained less than 1 %.
 // docs/solvers.md states the rule and the guarantee measured on the corpus.
+#include <time.h>
+
 #include <algorithm>
 #include <array>
 #include <cmath>
@@ -30,52 +39,73 @@
 #include <moreau/solver.hpp>
 #include <vector>
 
+#include "../work.hpp"
 #include "admm_core.hpp"
 #include "apgd_core.hpp"
 #include "newton_core.hpp"
 #include "nlgs_body_sweep.hpp"
 #include "nlgs_sweep.hpp"
+#include "sweep_order.hpp"
 
 namespace {
 using namespace moreau;
 
+// Newton twice: on its own run from the warm start (what `newton` alone does), and from the
+// best iterate so far (often close: NLGS's or APGD's).
+enum Member { nlgs_member, apgd_member, newton_start_member, newton_member, admm_member, member_count };
+constexpr const char* member_name[member_count] = {"nlgs", "apgd", "newton", "newton from the best", "admm"};
 
-// Newton twice: from the best iterate (NLGS's, often close) and on its own run from the warm
-// start (from NLGS's iterate it can crawl where alone it converges fast).
-enum Member { nlgs_member, newton_member, newton_start_member, admm_member, apgd_member, member_count };
+constexpr double inf = std::numeric_limits<double>::infinity();
 
 /// What auto knows of one member during a solve.
 struct MemberState {
   bool available = false;
-  double spent = 0;         ///< work of this solve (products by W, plugins/solver/work.hpp)
+  double spent = 0;         ///< work of this solve (plugins/solver/work.hpp)
   double rate = -1;         ///< ln(error) gained per unit of work in its last slice; −1: not tried
   int slices = 0;
   long iterations = 0;      ///< its own iterations (each member has `max_iterations`)
   double per_iteration = 0; ///< measured work of one of its iterations
   int fruitless = 0;        ///< consecutive slices without gain
   bool own_run = false;     ///< continues its own iterate instead of starting from the best
+  bool clean = true;        ///< all its work so far was from the warm start (a fair measure of its cost)
   Eigen::VectorXd own;      ///< its own iterate (own_run)
-  double own_err = std::numeric_limits<double>::infinity();
-  bool excluded(long max_it) const { return !available || iterations >= max_it || (slices >= 3 && fruitless >= 3); }
+  double own_err = inf;
+  double need = 0;          ///< its work to converge extrapolated at its rate (0: unknown)
 };
+
+/// What auto remembers of a member over the solves of a run.
+struct Memory {
+  double cost = 0;        ///< work per contact to converge from the warm start (0: unknown)
+  double step = 0;        ///< work per contact of one of its iterations (0: unknown)
+  long next_probe = 0;    ///< the solve from which it may be tried first again
+  long interval = 4;      ///< solves between two such tries (doubles after each loss)
+};
+
+double thread_seconds() {
+  timespec t{};
+  clock_gettime(CLOCK_THREAD_CPUTIME_ID, &t);
+  return static_cast<double>(t.tv_sec) + 1e-9 * static_cast<double>(t.tv_nsec);
+}
 
 class Auto : public Solver {
  public:
   static Schema schema() {
     Schema s;
     s.number("tolerance", "target error (DESIGN §1; in a time step normalised by the approaching contacts)").gt(0).fallback(1e-3);
-    s.integer("max_iterations", "maximum iterations of each member (NLGS sweeps, Newton, ADMM or APGD steps)").min(1).fallback(20000);
+    s.integer("max_iterations", "maximum iterations of each member (NLGS sweeps, APGD, Newton or ADMM steps)").min(1).fallback(20000);
     s.integer("nlgs_sweeps", "maximum sweeps of the first NLGS stage (0: start with the other members)").min(0).fallback(100000);
     s.integer("check_every", "NLGS sweeps between two evaluations of the error (as nlgs)").min(1).fallback(5);
-    s.integer("direct_max_contacts", "above this many contacts, no sparse factorisation (Newton, ADMM): APGD instead").min(0).fallback(1000);
+    s.integer("direct_max_contacts", "above this many contacts, no sparse factorisation (Newton, ADMM)").min(0).fallback(1000);
+    s.boolean("remember", "over the solves of a run, start with the member that was cheapest on the earlier ones (off by default: a restart does not restore this memory, so it would not be bit-identical)").fallback(false);
     return s;
   }
   static constexpr const char* doc =
-      "portfolio: NLGS first, then NLGS, Newton, ADMM (or APGD for large problems) in time slices chosen by measured progress";
+      "portfolio: the member cheapest on earlier solves (NLGS at first), then NLGS, APGD, Newton, ADMM in slices chosen by measured progress";
 
   Auto(const Params& p, const BuildContext&)
       : tol_(p.number("tolerance")), max_it_(p.integer("max_iterations")), nlgs_sweeps_(p.integer("nlgs_sweeps")),
-        check_(p.integer("check_every")), direct_max_contacts_(p.integer("direct_max_contacts")) {}
+        check_(p.integer("check_every")), direct_max_contacts_(p.integer("direct_max_contacts")),
+        remember_(p.boolean("remember")) {}
 
   bool reads_matrix_with_factor() const override { return false; }
 
@@ -90,109 +120,117 @@ class Auto : public Solver {
       return rep;
     }
     P_ = &P;
+    nc_ = static_cast<double>(nc);
     bodies_ = P.factor.present();
     assembled_ready_ = false;
     if (bodies_) body_sweeper_.prepare(P, r);  // the records, once per solve
-    const Eigen::VectorXd start = r;
+    else sweeper_.prepare(P);
+    nlgs::fixed_last_order(P, order_);
+    costs_ = WorkCosts::of(P, bodies_);
+    if (bodies_) costs_.sweep = nc_ * (0.3 * static_cast<double>(body_sweeper_.record_size()) + (d == 2 ? 5.0 : 15.0)) + 200;
+    start_ = r;
     best_ = r;
-    best_err_ = std::numeric_limits<double>::infinity();
+    best_err_ = inf;
+    winner_ = -1;
     total_ = 0;
     work_ = 0;
     admm_slices_ = 0;
+    apgd_slices_ = 0;
+    current_ = best_by_ = -1;
+    ++solve_index_;
+    const bool direct = nc <= direct_max_contacts_;
+    std::array<MemberState, member_count> m;
+    m[nlgs_member].available = true;
+    m[apgd_member].available = true;
+    m[newton_member].available = direct;
+    m[newton_start_member].available = direct;
+    m[admm_member].available = direct;
+    for (Member k : {newton_start_member, admm_member}) m[k].own_run = true;
+
     auto finish = [&]() {
-      if (!std::isfinite(best_err_)) best_ = start;  // no iterate was ever evaluated
+      if (!std::isfinite(best_err_)) best_ = start_;  // no iterate was ever evaluated
       r = best_;
       velocities(r, u);
       rep.iterations = total_;
       rep.error = natural_map_error(P, r, u);
       rep.converged = rep.error <= tol_;
+      if (remember_) learn(m);
       return rep;
     };
 
-    const bool direct = nc <= direct_max_contacts_;
-    std::array<MemberState, member_count> m;
-    m[nlgs_member].available = true;
-    m[newton_member].available = direct;
-    m[newton_start_member].available = direct;
-    m[admm_member].available = direct;
-    m[apgd_member].available = !direct;
-    // Newton and ADMM follow their own runs from the warm start, as each would alone:
-    // started from NLGS's iterate, Newton can crawl for hundreds of steps where alone it
-    // converges in tens (measured on spheres-in-a-box at 1e-8: 0.36 s alone, 3.9 s from
-    // the best iterate). NLGS and APGD, first-order methods, start from the best.
-    for (Member k : {newton_start_member, admm_member}) {
-      m[k].own_run = true;
-      m[k].own = r;
+    // 0. The incumbent, and now and then another member first on the incumbent's budget.
+    const int inc = remember_ ? incumbent(m) : -1;
+    if (inc >= 0) {
+      const int c = challenger(m, inc);
+      if (c >= 0) {
+        slice(m, c, memory_[inc].cost * nc_, false);
+        Memory& mc = memory_[c];
+        if (best_err_ <= tol_) {
+          mc.interval = 4;
+        } else {
+          mc.interval = std::min<long>(2 * mc.interval, 256);
+          m[nlgs_member].clean = false;  // the others now start from its iterate
+          m[apgd_member].clean = false;
+          m[newton_member].clean = false;
+        }
+        mc.next_probe = solve_index_ + mc.interval;
+        if (best_err_ <= tol_) return finish();
+      }
     }
 
-    // 1. NLGS on the `nlgs` schedule, while its own rate says it finishes soon enough.
-    if (nlgs_sweeps_ > 0) {
+    // 1. The first member: NLGS on the `nlgs` schedule, or the incumbent on thrice its work.
+    const int first = inc >= 0 ? inc : nlgs_member;
+    if (first == nlgs_member && nlgs_sweeps_ > 0) {
+      MemberState& ms = m[nlgs_member];
       const double before = work_;
-      double first_err = 0;
       const long before_it = total_;
-      const double rate = run_nlgs(r, std::min(nlgs_sweeps_, max_it_), 0, true, &first_err);
-      m[nlgs_member].iterations += total_ - before_it;
-      if (trace_) std::fprintf(stderr, "auto: first nlgs %.1f units, best %.2e, rate %.2e, it %ld\n", work_ - before, best_err_, rate, total_);
+      const double t0 = trace_ ? thread_seconds() : 0;
+      double reached = inf;
+      Eigen::VectorXd x = best_;  // the warm start, unless a tried member did better
+      if ((x - start_).squaredNorm() != 0) {
+        ms.clean = false;
+        if (bodies_) body_sweeper_.reset_velocities(x);
+      }
+      current_ = nlgs_member;
+      const double rate = run_nlgs(x, std::min(nlgs_sweeps_, max_it_), 0, true, &reached);
+      ms.iterations += total_ - before_it;
+      if (total_ > before_it) ms.per_iteration = (work_ - before) / static_cast<double>(total_ - before_it);
+      if (trace_)
+        std::fprintf(stderr, "auto: first nlgs %.3g work (%.3g ns), best %.2e, rate %.2e, it %ld, n %ld nnz %ld\n", work_ - before,
+                     1e9 * (thread_seconds() - t0), best_err_, rate, total_, static_cast<long>(P_->q.size()),
+                     static_cast<long>(P_->W.nonZeros()));
+      account(ms, work_ - before, rate);
+      if (best_err_ <= tol_) {
+        winner_ = nlgs_member;
+        return finish();
+      }
+      ms.need = rate > 0 ? (work_ - before) + std::log(best_err_ / tol_) / rate : 0;
+    } else if (first != nlgs_member) {
+      slice(m, first, 3 * memory_[first].cost * nc_, false);
       if (best_err_ <= tol_) return finish();
-      account(m[nlgs_member], work_ - before, rate);
     } else {
       velocities(r, u);
       keep(r, natural_map_error(P, r, u));
+      work_ += costs_.product + costs_.error;
     }
     if (!std::isfinite(best_err_)) return finish();
 
     // 2. Slices that double, to the member expected to finish first.
     while (best_err_ > tol_) {
-      const double elapsed = work_;
-      const int who = next_member(m, elapsed);
+      const int who = next_member(m, work_);
       if (who < 0) break;
-      MemberState& ms = m[who];
-      // The member expected to finish first gets the work spent so far (slices double);
-      // a member tried to measure its rate gets a quarter of it.
-      // Either way at least 5 of its iterations: Newton's progress shows after a few.
-      const double slice = std::max({(who == exploring_ ? 0.25 : 1.0) * elapsed, 5 * ms.per_iteration, 4.0});
-      if (ms.own_run && !std::isfinite(ms.own_err)) {  // its start's error, once (hard problems only)
-        Eigen::VectorXd v = with_w().W * ms.own + P.q;
-        ms.own_err = natural_map_error(P, ms.own, v);
-        work_ += 1;
-      }
-      Eigen::VectorXd x = ms.own_run ? ms.own : best_;
-      const double from = ms.own_run ? ms.own_err : best_err_;
-      const double t_start = work_;
-      double reached = 0;
-      const long before_it = total_;
-      // Newton's first probe: 4 steps whatever their work (its progress shows after a few).
-      const bool newton = who == newton_member || who == newton_start_member;
-      const bool newton_probe = newton && ms.slices == 0;
-      const long member_max = newton ? std::min<long>(max_it_, 200) : max_it_;  // a Newton step costs a factorisation
-      const double window_rate = run_member(static_cast<Member>(who), x, newton_probe ? 0.0 : slice,
-                                            newton_probe ? std::min<long>(4, member_max - ms.iterations)
-                                                         : std::max<long>(1, member_max - ms.iterations), &reached);
-      ms.iterations += total_ - before_it;
-      if (total_ > before_it) ms.per_iteration = (work_ - t_start) / static_cast<double>(total_ - before_it);
-      const double took = work_ - t_start;
-      if (best_err_ <= tol_) {
-        remember_other(static_cast<Member>(who), took, nc, true);
-        break;
-      }
-      // Not converged: its work to converge, extrapolated at the rate it showed, bounds it.
-      const double need = reached < from && reached > tol_ ? took * std::log(from / tol_) / std::log(from / reached) : 4 * took;
-      remember_other(static_cast<Member>(who), std::min(need, 4 * took), nc, false);
-      const double gain = reached < from ? std::log(from / reached) : 0.0;
-      if (trace_) std::fprintf(stderr, "auto: at %.1f units, member %d, slice %.1f took %.1f, from %.2e reached %.2e, best %.2e, own %d, it %ld\n",
-                               work_, who, slice, took, from, reached, best_err_, int(ms.own_run), total_);
-      account(ms, took, who == nlgs_member ? window_rate : gain / std::max(took, 1e-12));
-      if (gain < std::log(1 / 0.99)) ++ms.fruitless;
-      else ms.fruitless = 0;
-      if (ms.own_run) {
-        ms.own = who == newton_start_member ? last_ : x;  // Newton resumes from its last step, not its best
-        ms.own_err = std::min(ms.own_err, reached);
-      }
+      slice(m, who, (who == exploring_ ? 0.25 : 1.0) * work_, true);
     }
     return finish();
   }
 
  private:
+  /// Newton's iterations are capped at 200: each costs a factorisation.
+  long member_max(int k) const { return k == newton_member || k == newton_start_member ? std::min<long>(max_it_, 200) : max_it_; }
+  bool excluded(const MemberState& s, int k) const {
+    return !s.available || s.iterations >= member_max(k) || (s.slices >= 3 && s.fruitless >= 3);
+  }
+
   /// u = W x + q, through the bodies when only the factor was given.
   void velocities(const Eigen::VectorXd& x, Eigen::VectorXd& v) {
     if (bodies_)
@@ -204,6 +242,7 @@ class Auto : public Solver {
     if (e < best_err_ && x.allFinite()) {
       best_err_ = e;
       best_ = x;
+      best_by_ = current_;
     }
   }
   /// The problem with W, assembled from the factor the first time a member needs it.
@@ -217,44 +256,112 @@ class Auto : public Solver {
       assembled_.mu = P.mu;
       assembled_.error_scale = P.error_scale;
       assembled_ready_ = true;
+      work_ += 2 * costs_.product;  // about two products through the factor
     }
     return assembled_;
+  }
+
+  /// The member with the lowest remembered work per contact among those available; −1 when
+  /// none is known yet.
+  int incumbent(const std::array<MemberState, member_count>& m) const {
+    int best = -1;
+    for (int k = 0; k < member_count; ++k)
+      if (m[k].available && memory_[k].cost > 0 && (best < 0 || memory_[k].cost < memory_[best].cost)) best = k;
+    return best;
+  }
+
+  /// A member to try before the incumbent on this solve: one whose turn has come (untried
+  /// ones first, then the lowest remembered work) and whose first iterations fit in the
+  /// incumbent's work. −1: none.
+  int challenger(const std::array<MemberState, member_count>& m, int inc) {
+    const double budget = memory_[inc].cost;
+    int best = -1;
+    for (int k = 0; k < member_count; ++k) {
+      if (k == inc || !m[k].available || memory_[k].next_probe > solve_index_) continue;
+      if (k == newton_member) continue;  // from the best iterate: only useful after another member
+      const double first_steps = (k == newton_start_member || k == admm_member ? 2.0 : 5.0) * memory_[k].step;
+      if (memory_[k].step > 0 && first_steps > budget) {  // cannot show anything within the budget
+        memory_[k].interval = std::min<long>(2 * memory_[k].interval, 256);
+        memory_[k].next_probe = solve_index_ + memory_[k].interval;
+        continue;
+      }
+      if (best < 0 || memory_[k].cost < memory_[best].cost) best = k;
+    }
+    return best;
+  }
+
+  /// One slice of `who`, at most `budget` work (0: none), then the bookkeeping. `later`: in
+  /// the slices stage (a Newton probe is 4 steps whatever their work).
+  void slice(std::array<MemberState, member_count>& m, int who, double budget, bool later) {
+    MemberState& ms = m[who];
+    const bool newton = who == newton_member || who == newton_start_member;
+    if (later) budget = std::max({budget, 5 * ms.per_iteration, costs_.sweep});
+    if (ms.own_run && ms.own.size() == 0) {
+      ms.own = start_;
+      if (std::isfinite(best_err_) && (best_ - start_).squaredNorm() == 0) ms.own_err = best_err_;
+    }
+    if (ms.own_run && !std::isfinite(ms.own_err)) {  // its start's error, once
+      Eigen::VectorXd v;
+      velocities(ms.own, v);
+      ms.own_err = natural_map_error(*P_, ms.own, v);
+      work_ += costs_.product + costs_.error;
+      keep(ms.own, ms.own_err);
+    }
+    Eigen::VectorXd x = ms.own_run ? ms.own : best_;
+    const double from = ms.own_run ? ms.own_err : best_err_;
+    if (!ms.own_run && (x - start_).squaredNorm() != 0) ms.clean = false;
+    const double t_start = work_, t0 = trace_ ? thread_seconds() : 0;
+    double reached = inf;
+    const long before_it = total_;
+    const bool newton_probe = later && newton && ms.slices == 0;
+    const double window_rate = run_member(static_cast<Member>(who), x, newton_probe ? 0.0 : budget,
+                                          newton_probe ? std::min<long>(4, member_max(who) - ms.iterations)
+                                                       : std::max<long>(1, member_max(who) - ms.iterations),
+                                          &reached);
+    ms.iterations += total_ - before_it;
+    const double took = work_ - t_start;
+    if (total_ > before_it) ms.per_iteration = took / static_cast<double>(total_ - before_it);
+    const double gain = reached < from ? std::log(from / reached) : 0.0;
+    if (trace_)
+      std::fprintf(stderr, "auto: %s, budget %.3g, took %.3g work (%.3g ns), from %.2e reached %.2e, best %.2e, it %ld, n %ld nnz %ld\n",
+                   member_name[who], budget, took, 1e9 * (thread_seconds() - t0), from, reached, best_err_, total_,
+                   static_cast<long>(P_->q.size()), static_cast<long>(P_->W.nonZeros()));
+    account(ms, took, who == nlgs_member ? window_rate : gain / std::max(took, 1e-12));
+    ms.fruitless = gain < std::log(1 / 0.99) ? ms.fruitless + 1 : 0;
+    if (best_err_ > tol_) {  // its work to converge, extrapolated at the rate it showed
+      const double rate = ms.rate;
+      ms.need = rate > 0 ? ms.spent + std::log(std::min(from, reached) / tol_) / rate : 0;
+    } else {
+      winner_ = who;
+    }
+    if (ms.own_run) {
+      ms.own = who == newton_start_member ? last_ : x;  // Newton resumes from its last step, not its best
+      ms.own_err = std::min(ms.own_err, reached);
+    }
   }
 
   /// NLGS sweeps from x (error at the first sweep, then every check_): until converged,
   /// `max_sweeps`, the work budget (`units` > 0), or, for the first stage (`first`), until
   /// its measured rate says another member would finish sooner. Returns its last measured
-  /// rate (ln of the error per second; 0 when unknown); `reached`: its lowest error.
+  /// rate (ln of the error per unit of work; 0 when unknown); `reached`: its lowest error.
   double run_nlgs(Eigen::VectorXd& x, long max_sweeps, double units, bool first, double* reached) {
     const LocalProblem& P = *P_;
-    const Eigen::Index nc = P.contacts();
-    if (bodies_) {
-      if (!first) body_sweeper_.reset_velocities(x);  // the first stage starts where prepare() set Δv
-    } else {
-      sweeper_.prepare(P);
-    }
-    if (static_cast<Eigen::Index>(order_.size()) != nc) {
-      order_.resize(static_cast<std::size_t>(nc));
-      for (Eigen::Index a = 0; a < nc; ++a) order_[static_cast<std::size_t>(a)] = a;
-    }
+    if (bodies_ && !first) body_sweeper_.reset_velocities(x);  // the first stage starts where prepare() set Δv
     const double w0 = work_;
     Eigen::VectorXd v;
-    struct Check {
-      double t, err;
-    };
-    std::vector<Check> hist;
-    double own_best = std::numeric_limits<double>::infinity(), rate = 0;
+    hist_.clear();
+    double own_best = inf, rate = 0;
     *reached = own_best;
     for (long it = 1; it <= max_sweeps; ++it) {
       if (bodies_)
         body_sweeper_.sweep(x, 1.0, order_);
       else
-        sweeper_.sweep(P, x);
+        sweeper_.sweep(P, x, 1.0, order_);
       ++total_;
-      work_ += 1;  // a sweep reads each contact's data once: about a product by W
+      work_ += costs_.sweep;
       if (it != 1 && it % check_ != 0) continue;
       velocities(x, v);
-      work_ += 1;
+      work_ += costs_.product + costs_.error;
       const double e = natural_map_error(P, x, v);
       if (!std::isfinite(e)) break;
       keep(x, e);
@@ -262,27 +369,33 @@ class Auto : public Solver {
       *reached = own_best;
       if (best_err_ <= tol_) return rate;
       const double now = work_ - w0;
-      hist.push_back({now, own_best});
+      hist_.push_back({now, own_best});
       if (units > 0 && now >= units) return rate;
-      // The rate over the last window (about 4 checks, at least 2): ln(error) per second.
-      const std::size_t h = hist.size();
+      // The rate over the last window (about 4 checks, at least 2): ln(error) per unit of work.
+      const std::size_t h = hist_.size();
       if (h < 3) continue;
-      const Check& a = hist[h > 5 ? h - 5 : 1];
-      const Check& b = hist[h - 1];
+      const auto& a = hist_[h > 5 ? h - 5 : 1];
+      const auto& b = hist_[h - 1];
       rate = b.t > a.t ? std::log(a.err / b.err) / (b.t - a.t) : 0;
-      const double remaining = rate > 0 ? std::log(b.err / tol_) / rate : std::numeric_limits<double>::infinity();
+      const double remaining = rate > 0 ? std::log(b.err / tol_) / rate : inf;
       if (first) {
         // Stay while finishing costs less than twice what has been spent (a switch could
         // not save more than that) or twice another member's remembered work: the factor
-        // keeps warm-started steps that NLGS finishes from paying for a probe.
-        const double total_elapsed = work_;
-        const double other = other_work_;
-        if (remaining > 2 * std::max(total_elapsed, other)) return rate;
-      } else if (h >= 6 && !(b.err < 0.9 * hist[h - 6].err)) {
-        return rate;  // a later slice that stalls gives its time back
+        // keeps warm-started steps that NLGS finishes from paying for a switch.
+        if (remaining > 2 * std::max(work_, other_cost())) return rate;
+      } else if (h >= 6 && !(b.err < 0.9 * hist_[h - 6].err)) {
+        return rate;  // a later slice that stalls gives its work back
       }
     }
     return rate;
+  }
+
+  /// The lowest remembered work of a member other than NLGS, for this problem's size.
+  double other_cost() const {
+    double c = 0;
+    for (int k = 1; k < member_count; ++k)
+      if (memory_[k].cost > 0 && (c == 0 || memory_[k].cost < c)) c = memory_[k].cost;
+    return remember_ ? c * nc_ : 0;
   }
 
   /// One slice of `who` from x (its iterate on exit), at most `units` of work. `reached`: the
@@ -296,6 +409,7 @@ class Auto : public Solver {
       o.max_work = units;
       o.work = &work_;
     };
+    current_ = who;
     switch (who) {
       case nlgs_member:
         return run_nlgs(x, budget, units, false, reached);
@@ -317,6 +431,8 @@ class Auto : public Solver {
       case apgd_member: {
         apgd::Options o;
         limits(o);
+        o.state = &apgd_state_;
+        o.resume = apgd_slices_++ > 0 && best_by_ == apgd_member;  // its run goes on while it holds the best iterate
         s = apgd::solve(*P_, o, x, v);  // through the factor when W was not given
         break;
       }
@@ -330,7 +446,7 @@ class Auto : public Solver {
     return 0;
   }
 
-  /// Books a slice: its time and the rate it showed (ln of the error gained per second).
+  /// Books a slice: its work and the rate it showed (ln of the error gained per unit of work).
   static void account(MemberState& ms, double took, double rate) {
     ms.spent += took;
     ++ms.slices;
@@ -338,60 +454,101 @@ class Auto : public Solver {
   }
 
   /// The next member: the one whose last rate finishes soonest; but while that one would
-  /// not finish within the time already spent, an untried member first, then one that has
-  /// had under a fifth of the time. −1 when every member is excluded (three slices in a
-  /// row without gain).
-  int next_member(const std::array<MemberState, member_count>& m, double elapsed) const {
+  /// not finish within the work already spent, an untried member first, then one that has
+  /// had under a fifth of the work. −1 when every member is excluded.
+  int next_member(const std::array<MemberState, member_count>& m, double elapsed) {
     int best = -1;
     for (int k = 0; k < member_count; ++k) {
-      if (m[k].excluded(k == newton_member || k == newton_start_member ? std::min<long>(max_it_, 200) : max_it_) || m[k].slices == 0) continue;
+      if (excluded(m[k], k) || m[k].slices == 0) continue;
       if (best < 0 || m[k].rate > m[best].rate) best = k;
     }
-    const double remaining = best >= 0 && m[best].rate > 0 ? std::log(best_err_ / tol_) / m[best].rate
-                                                            : std::numeric_limits<double>::infinity();
+    const double remaining = best >= 0 && m[best].rate > 0 ? std::log(best_err_ / tol_) / m[best].rate : inf;
     exploring_ = -1;
     if (remaining > elapsed) {
-      for (int k = 0; k < member_count; ++k)
-        if (!m[k].excluded(k == newton_member || k == newton_start_member ? std::min<long>(max_it_, 200) : max_it_) && m[k].slices == 0) return exploring_ = k;
+      // Untried members, the cheapest iterations first. Newton's probe (4 steps, each a
+      // factorisation) and ADMM's first step (a factorisation) wait until they cost at most
+      // a quarter of the work spent, unless the tried members' rates say they need more than
+      // Newton's usual 15 steps.
+      const double step = newton_step_estimate();
+      int waiting = -1;
+      for (int k : {apgd_member, newton_member, newton_start_member, admm_member}) {
+        if (excluded(m[k], k) || m[k].slices != 0) continue;
+        const double probe = k == admm_member ? step : k == apgd_member ? 0.0 : 4 * step;
+        if (probe > 0.25 * elapsed && remaining < 4 * step) {
+          if (waiting < 0) waiting = k;
+          continue;
+        }
+        return exploring_ = k;
+      }
       int least = -1;
       for (int k = 0; k < member_count; ++k)
-        if (!m[k].excluded(k == newton_member || k == newton_start_member ? std::min<long>(max_it_, 200) : max_it_) && k != best && m[k].spent < 0.2 * elapsed && (least < 0 || m[k].spent < m[least].spent)) least = k;
+        if (!excluded(m[k], k) && m[k].slices != 0 && k != best && m[k].spent < 0.2 * elapsed &&
+            (least < 0 || m[k].spent < m[least].spent))
+          least = k;
       if (least >= 0) return exploring_ = least;
+      if (best < 0 && waiting >= 0) return exploring_ = waiting;
     }
     return best;
   }
 
-  /// Work the members other than NLGS take to converge (exponential average; a slice that
-  /// did not converge is a lower bound). The first NLGS stage of later solves stays as
-  /// long as it finishes with less work than that.
-  void remember_other(Member who, double units, Eigen::Index nc, bool converged) {
-    if (who == nlgs_member) return;
-    const double per = units;  // work units are already relative to the problem's size
-    (void)nc;
-    if (converged)
-      other_work_ = other_work_ > 0 ? 0.7 * other_work_ + 0.3 * per : per;
-    else
-      other_work_ = std::max(other_work_, per);
+  /// The work of one Newton step on this problem: remembered, or from W's fill (its LU
+  /// has 1.1 to 5 nnz(W) entries on the corpus, 1.5 typically: 2 taken here).
+  double newton_step_estimate() const {
+    if (memory_[newton_start_member].step > 0) return memory_[newton_start_member].step * nc_;
+    const double nnz = bodies_ && P_->W.rows() == 0 ? 12.0 * P_->dim * P_->dim * nc_ : static_cast<double>(P_->W.nonZeros());
+    const double n = P_->dim * nc_;
+    return WorkCosts::assembly(nnz, n) + WorkCosts::factorisation(nnz, nnz, n) + 3 * costs_.product;
   }
 
+  /// After a solve: each member's remembered work per contact follows what this solve showed
+  /// (exponential average): the work of the member that converged, or the work extrapolated
+  /// at its rate for one that did not; only for runs from the warm start (a fair measure).
+  void learn(const std::array<MemberState, member_count>& m) {
+    // A solve that its first member finished at its first check (a warm start that was
+    // already the answer, or no contact closing) says nothing of the members' costs.
+    if (winner_ >= 0 && m[winner_].iterations <= 1 && m[winner_].slices <= 1) return;
+    for (int k = 0; k < member_count; ++k) {
+      const MemberState& s = m[k];
+      if (s.slices == 0) continue;
+      Memory& mem = memory_[k];
+      if (s.per_iteration > 0) mem.step = s.per_iteration / nc_;
+      if (!s.clean) continue;
+      const double c = (k == winner_ ? s.spent : s.need) / nc_;
+      if (c > 0) mem.cost = mem.cost > 0 ? 0.5 * mem.cost + 0.5 * c : c;
+    }
+  }
+
+  int winner_ = -1;             ///< the member whose run reached the tolerance (−1: none)
   mutable int exploring_ = -1;  ///< the member next_member() picked to measure, not for its rate
   bool trace_ = std::getenv("MOREAU_AUTO_TRACE") != nullptr;
   double tol_;
   long max_it_, nlgs_sweeps_, check_, direct_max_contacts_;
+  bool remember_;
   // Per solve.
   const LocalProblem* P_ = nullptr;
+  double nc_ = 0;
   bool bodies_ = false;
-  Eigen::VectorXd best_;
+  WorkCosts costs_;
+  Eigen::VectorXd start_, best_;
   double best_err_ = 0;
   long total_ = 0;
-  double work_ = 0;
+  double work_ = 0;       ///< work of this solve (plugins/solver/work.hpp)
   Eigen::VectorXd last_;  ///< Newton's last iterate of its last slice
-  int admm_slices_ = 0;   ///< ADMM slices of this solve (the later ones resume its run)  ///< work of this solve, in products by W (deterministic, plugins/solver/work.hpp)
+  int admm_slices_ = 0;   ///< ADMM slices of this solve (the later ones resume its run)
+  int apgd_slices_ = 0;   ///< APGD slices of this solve
+  apgd::State apgd_state_;
+  int current_ = -1;      ///< the member running
+  int best_by_ = -1;      ///< the member whose iterate is best_
   LocalProblem assembled_;
   bool assembled_ready_ = false;
   std::vector<Eigen::Index> order_;
+  struct Check {
+    double t, err;
+  };
+  std::vector<Check> hist_;
   // Kept over the solves of a run.
-  double other_work_ = 0;
+  long solve_index_ = 0;
+  std::array<Memory, member_count> memory_;
   nlgs::Sweeper sweeper_;
   nlgs::BodySweeper body_sweeper_;
   admm::Admm admm_;

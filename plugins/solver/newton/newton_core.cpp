@@ -124,7 +124,8 @@ SolverReport Newton::solve(const LocalProblem& P, const Options& o, Eigen::Vecto
   std::vector<double> best_hist;
   bool analysed = false;
   WorkMeter meter(o.max_work, o.work);
-  const double unit = std::max<double>(1.0, static_cast<double>(P.W.nonZeros()));
+  const WorkCosts cost = WorkCosts::of(P, false);
+  meter.add(cost.product + cost.error);  // the start's error
   Eigen::Index pattern_nnz = -1;
   for (long it = 1; it <= o.max_iterations && err > o.tolerance; ++it) {
     rep.iterations = it;
@@ -147,7 +148,7 @@ SolverReport Newton::solve(const LocalProblem& P, const Options& o, Eigen::Vecto
           trip.emplace_back(a * d + i, a * d + j, A[(a * d + i) * d + j]);
     As.setFromTriplets(trip.begin(), trip.end());
     J = As + Bs * W;
-    meter.add(d + 2);  // Φ, A, B and the product B W
+    meter.add(WorkCosts::assembly(static_cast<double>(P.W.nonZeros()), static_cast<double>(n)) + 6 * cost.vector);  // Φ, A, B, J = A + B W
     // Regularised direction (J + λI) d = −Φ, λ = clamp(‖Φ‖/‖r‖, λ_min, λ_max): W is often
     // singular (redundant contacts), and so is J at sticking contacts; λ → λ_min near the
     // solution keeps the convergence fast. A failed line search retries with a larger λ
@@ -165,16 +166,16 @@ SolverReport Newton::solve(const LocalProblem& P, const Options& o, Eigen::Vecto
       lu_.factorize(M);
       if (lu_.info() != Eigen::Success) continue;
       dir = lu_.solve(-phi);
-      {  // the factorisation (about nnz(L) nnz(U) / n) and the two triangular solves
+      {  // the factorisation and the two triangular solves
         const double nl = static_cast<double>(lu_.nnzL()), nu = static_cast<double>(lu_.nnzU());
-        meter.add((nl * nu / static_cast<double>(n) + 2 * (nl + nu)) / unit);
+        meter.add(WorkCosts::factorisation(nl, nu, static_cast<double>(n)) + WorkCosts::triangular_solves(nl, nu));
       }
       if (!dir.allFinite()) continue;
       double t = 1;
       for (int k = 0; k <= o.max_backtracks; ++k, t *= 0.5) {
         r_try = r + t * dir;
         u_try = P.W * r_try + P.q;
-        meter.add(1);
+        meter.add(cost.product + 3 * cost.vector);
         alart_curnier(P, rho_n, rho_t, r_try, u_try, phi_try, nullptr, nullptr);
         const double psi_try = 0.5 * phi_try.squaredNorm();
         if (std::isfinite(psi_try) && psi_try <= ref - 1e-4 * t * 2 * psi) {
@@ -193,11 +194,12 @@ SolverReport Newton::solve(const LocalProblem& P, const Options& o, Eigen::Vecto
         tmp = r - Dinv.cwiseProduct(tmp);
         project_all(P, tmp, r);
         u = P.W * r + P.q;
-        meter.add(1);
+        meter.add(cost.product + 3 * cost.vector);
       }
       merits.clear();
     }
     err = natural_map_error(P, r, u);
+    meter.add(cost.error);
     if (!std::isfinite(err) || !r.allFinite()) break;
     if (err < best_err) {
       best_err = err;

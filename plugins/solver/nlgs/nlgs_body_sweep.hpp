@@ -35,6 +35,8 @@ class BodySweeper {
   void velocities(const Eigen::VectorXd& r, Eigen::VectorXd& u);
   /// Sets Δv from another r (records kept): sweeps then continue from that r.
   void reset_velocities(const Eigen::VectorXd& r);
+  /// Doubles per contact record (what a sweep reads per contact): for cost models.
+  std::size_t record_size() const { return stride_; }
 
  private:
   int d_ = 3, k_ = 6;         ///< the problem's: contact dimension, unknowns per body
