@@ -9,12 +9,18 @@ the solve stage's seconds per step (from `moreau run`'s stage table), the steps 
 missed the tolerance (from the end-of-run summary), and auto over the best member.
 
     python3 scripts/bench_scenes.py [--moreau build/bin/moreau] [--steps 1000] [--repeat 3]
-        [--solvers auto nlgs newton admm apgd] [--only NAME ...] [--tolerance X] [--out build/bench_scenes]
+        [--solvers auto nlgs newton admm apgd] [--only NAME ...] [--tolerance X] [--cpu] [--out build/bench_scenes]
+
+With --cpu the time is the run's CPU time (user + system, the whole process, every stage)
+per step instead of the solve stage's wall time: on a loaded shared machine wall times
+move by tens of per cent between runs, CPU times much less (stages other than the solve
+are included and add the same to every solver, so ratios lean towards 1).
 """
 import argparse
 import json
 import os
 import re
+import resource
 import statistics
 import subprocess
 import sys
@@ -52,22 +58,29 @@ def solver_block(scene, name, tolerance=None):
     return block, tol
 
 
-def run(moreau, scene, name, steps, tmp, tolerance=None):
+def child_cpu():
+    r = resource.getrusage(resource.RUSAGE_CHILDREN)
+    return r.ru_utime + r.ru_stime
+
+
+def run(moreau, scene, name, steps, tmp, tolerance=None, cpu=False):
     s = json.loads(json.dumps(scene))
     s["solver"], tol = solver_block(scene, name, tolerance)
     path = os.path.join(tmp, "scene.json")
     json.dump(s, open(path, "w"))
     total = round(s["time"]["duration"] / s["time"]["step"])
     n = min(steps, total)
+    c0 = child_cpu()
     p = subprocess.run([moreau, "run", path, "--out", os.path.join(tmp, "out.h5"), "--steps", str(n)],
                        capture_output=True, text=True)
+    used = child_cpu() - c0
     if p.returncode != 0:
         return {"error": p.stderr.strip().splitlines()[-1] if p.stderr.strip() else f"exit {p.returncode}"}
     text = p.stdout + p.stderr
     stages = {m.group(1): float(m.group(2)) for m in re.finditer(r"^\s+(\w+)\s+([0-9.]+) s", text, re.M)}
     miss = re.search(r"contact solves: (\d+) of (\d+) steps ended above", text)
     worst = re.search(r"worst error ([0-9.e+-]+)", text)
-    return {"solve": stages.get("solve", 0.0) / n, "total": stages.get("total", 0.0) / n, "steps": n, "tol": tol,
+    return {"solve": (used if cpu else stages.get("solve", 0.0)) / n, "total": stages.get("total", 0.0) / n, "steps": n, "tol": tol,
             "misses": int(miss.group(1)) if miss else 0, "worst": float(worst.group(1)) if worst else 0.0}
 
 
@@ -79,6 +92,7 @@ def main():
     ap.add_argument("--solvers", nargs="+", default=["auto", "nlgs", "newton", "admm", "apgd"])
     ap.add_argument("--only", nargs="+", metavar="NAME")
     ap.add_argument("--tolerance", type=float, help="one tolerance for every scene (default: each scene's own)")
+    ap.add_argument("--cpu", action="store_true", help="the run's CPU time per step instead of the solve stage's wall time")
     ap.add_argument("--out", default=os.path.join(REPO, "build", "bench_scenes"))
     a = ap.parse_args()
     moreau = os.path.abspath(a.moreau)
@@ -94,7 +108,7 @@ def main():
             results = {s: [] for s in a.solvers}
             for _ in range(a.repeat):  # interleaved: each round runs every solver once
                 for sv in a.solvers:
-                    results[sv].append(run(moreau, all_scenes[name], sv, a.steps, tmp, a.tolerance))
+                    results[sv].append(run(moreau, all_scenes[name], sv, a.steps, tmp, a.tolerance, a.cpu))
             med, misses = {}, {}
             for sv, rs in results.items():
                 good = [r for r in rs if "error" not in r]
