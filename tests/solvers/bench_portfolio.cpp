@@ -33,22 +33,13 @@
 #include <vector>
 
 #include "kernel/fclib/fclib.hpp"
-#include "kernel/scene/validate.hpp"
-#include "sim.hpp"
+#include "registered_solver.hpp"
 
 namespace {
 
 std::unique_ptr<moreau::Solver> make(const std::string& name, double tol, long max_it) {
   nlohmann::json params = {{"tolerance", tol}, {"max_iterations", max_it}};
-  for (auto& r : moreau::detail::local_registrations())
-    if (r.kind == moreau::Kind::solver && r.name == name) {
-      std::vector<moreau::InputError> errors;
-      moreau::kernel::Validation v{3, errors};
-      nlohmann::json filled = moreau::kernel::validate_object(params, r.schema, "/solver", v);
-      if (!errors.empty()) throw errors.front();
-      return moreau_test::create<moreau::Solver>(name, filled, moreau::BuildContext{});
-    }
-  throw std::runtime_error("no solver " + name);
+  return solver_cases::registered_solver(name, params, name);
 }
 
 /// The iteration caps of scripts/work_precision.py: cheap iterations may be many, a Newton

@@ -16,6 +16,7 @@
 
 #include "kernel/fclib/fclib.hpp"
 #include "kernel/scene/validate.hpp"
+#include "registered_solver.hpp"
 #include "sim.hpp"
 
 namespace solver_cases {
@@ -41,15 +42,7 @@ inline std::unique_ptr<moreau::Solver> make(const std::string& spec, nlohmann::j
       }
     }
   }
-  for (auto& r : moreau::detail::local_registrations())
-    if (r.kind == moreau::Kind::solver && r.name == name) {
-      std::vector<moreau::InputError> errors;
-      moreau::kernel::Validation v{3, errors};
-      nlohmann::json filled = moreau::kernel::validate_object(params, r.schema, "/solver", v);
-      if (!errors.empty()) throw errors.front();
-      return moreau_test::create<moreau::Solver>(name, filled, moreau::BuildContext{});
-    }
-  throw std::logic_error("no solver " + spec + " linked into the test");
+  return registered_solver(name, params, spec);
 }
 
 inline LocalProblem problem(int d, const std::vector<double>& W, const std::vector<double>& q, const std::vector<double>& mu) {
