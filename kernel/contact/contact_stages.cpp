@@ -2,6 +2,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <limits>
 #include <cstdio>
 #include <moreau/contact_error.hpp>
 #include <moreau/error.hpp>
@@ -88,6 +89,7 @@ void ContactStages::detection_configuration(StepContext& c) {
     bp_.body[i] = ct.body;
     bp_.group[i] = ct.group;
   }
+  swept_.begin_step(contactors, models, st, c.theta, c.h);
 }
 
 void ContactStages::broad_phase(StepContext&) { broadphase->pairs(bp_, pairs_); }
@@ -104,13 +106,22 @@ void ContactStages::narrow_phase(StepContext& c) {
     const Contactor& f = contactors[first];
     const Contactor& s = contactors[second];
     scratch_.clear();
+    start_gaps_.clear();
+    const double reach = alert + contactor_sweep_[first] + contactor_sweep_[second];
+    // A pair fast enough to cross a shape before q_θ is followed from q⁻ instead.
+    const bool swept = swept_.fast(first, second) &&
+                       swept_.detect(d, *use->detector, contactors, first, second, reach, scratch_, start_gaps_);
     // Contactor poses (body pose ∘ placement); points come back in world coordinates, and
     // the assembly takes lever arms from the body's centre of mass, its origin.
-    use->detector->detect(d, *f.shape, Pose{&contactor_poses_[7 * first], &contactor_poses_[7 * first + 3]}, *s.shape,
-                          Pose{&contactor_poses_[7 * second], &contactor_poses_[7 * second + 3]},
-                          alert + contactor_sweep_[first] + contactor_sweep_[second], scratch_);
+    if (!swept)
+      use->detector->detect(d, *f.shape, Pose{&contactor_poses_[7 * first], &contactor_poses_[7 * first + 3]}, *s.shape,
+                            Pose{&contactor_poses_[7 * second], &contactor_poses_[7 * second + 3]}, reach, scratch_);
     const int law = law_of[f.group * groups + s.group];
-    for (const auto& p : scratch_) contacts_.push_back(Detected{{first, second}, p, law, contact_key(first, second, p.feature)});
+    for (std::size_t k = 0; k < scratch_.size(); ++k) {
+      const auto& p = scratch_[k];
+      contacts_.push_back(Detected{{first, second}, p, law, contact_key(first, second, p.feature), swept,
+                                   swept ? start_gaps_[k] : p.gap});
+    }
   }
   if (!initial_overlaps_checked_) warn_initial_overlaps(c);
 }
@@ -123,13 +134,13 @@ void ContactStages::warn_initial_overlaps(const StepContext& c) {
   const auto& names = c.state.names();
   int shown = 0, found = 0;
   for (const auto& ct : contacts_) {
-    if (!(ct.point.gap < -(alert + 1e-9))) continue;
+    if (!(ct.start_gap < -(alert + 1e-9))) continue;
     if (++found > 10) continue;
     ++shown;
     const int b0 = contactors[ct.contactor[0]].body, b1 = contactors[ct.contactor[1]].body;
     std::fprintf(stderr, "warning: at the start, bodies \"%s\" and \"%s\" overlap by %.3g m (deeper than the alert distance %.3g m)\n",
                  names[std::min(b0, b1)].c_str(), names[std::max(b0, b1)].c_str(),
-                 -ct.point.gap, alert);
+                 -ct.start_gap, alert);
   }
   if (found > shown) std::fprintf(stderr, "warning: ... and %d more overlapping contacts at the start\n", found - shown);
 }
@@ -294,6 +305,20 @@ std::string ContactStages::worst_contact_bodies(const State& st) const {
          names[contactors[contacts_[at].contactor[1]].body] + "\"";
 }
 
+/// Swept contacts whose gap at q_θ is negative may not end the step overlapping: their
+/// normal shift is capped at g/(θh) (swept_shift). False when no contact needs it.
+bool ContactStages::swept_caps(const StepContext& c) {
+  const double none = std::numeric_limits<double>::infinity();
+  swept_caps_.assign(contacts_.size(), none);
+  bool any = false;
+  for (std::size_t a = 0; a < contacts_.size(); ++a)
+    if (contacts_[a].swept) {
+      swept_caps_[a] = swept_shift(none, contacts_[a].point.gap, c.theta, c.h);
+      any = any || swept_caps_[a] < none;
+    }
+  return any;
+}
+
 void ContactStages::solve_with_laws(StepContext& c) {
   // The laws' terms make the standard problem the solver sees (law_step.hpp); a law whose
   // internal variables the solution changes (damage, bonds that break) has the step
@@ -306,6 +331,7 @@ void ContactStages::solve_with_laws(StepContext& c) {
     contact_gap_[a] = contacts_[a].point.gap;
   }
   law_step_.begin(c.state, c.step, c.h, c.theta, contact_law_, contact_gap_, u_begin_, q_free_, new_contact_);
+  law_step_.cap_normal_shift(swept_caps(c) ? &swept_caps_ : nullptr);
   // Export (scene key export_problems) while the factor is still lent: W may have to be
   // built from it. The warm start is kept first, since the solver overwrites r_.
   const bool exporting = exporter && exporter->due(c.step + 1);

@@ -24,6 +24,7 @@
 #include "contact_assembly.hpp"
 #include "solve_log.hpp"
 #include "law_step.hpp"
+#include "swept_detection.hpp"
 
 namespace moreau::kernel {
 
@@ -85,6 +86,8 @@ class ContactStages {
     ContactPoint point;
     int law;
     std::uint64_t key;
+    bool swept = false;    ///< from swept detection (swept_detection.hpp)
+    double start_gap = 0;  ///< gap at the start configuration, where known (else the point's gap)
   };
   const DetectorUse* detector_for(const std::string& a, const std::string& b) const;
   void warn_initial_overlaps(const StepContext& c);
@@ -101,6 +104,10 @@ class ContactStages {
   std::vector<ContactPoint> scratch_;
   ContactSides sides_;
   ContactAssembly assembly_;
+  std::vector<double> start_gaps_;
+  std::vector<double> swept_caps_;  ///< per contact, the largest normal shift (swept contacts)
+  bool swept_caps(const StepContext& c);
+  SweptDetection swept_;
   LocalProblem problem_;
   Eigen::VectorXd r_, u_;
   SolverReport report_;

@@ -126,6 +126,13 @@ void LawStep::to_solver(LocalProblem& P, Eigen::VectorXd& r) {
     }
     cohesion_[i] = t.cohesion;
     any_cohesion_ = any_cohesion_ || t.cohesion != 0;
+    if (caps_ && (*caps_)[a] < shift_[i]) {
+      if (capped_ < 0) {
+        capped_ = static_cast<long>(a);
+        capped_law_shift_ = shift_[i];
+      }
+      shift_[i] = (*caps_)[a];
+    }
   }
   set_compliance(P);
   // q' = q_free + s − W' c e_n; r' = r + c e_n.

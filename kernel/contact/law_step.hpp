@@ -46,6 +46,16 @@ class LawStep {
   /// the problem (μ, q', κ in W and the factor) and r turned into r' (r: the true impulses,
   /// a warm start). The problem's W or factor must be in place.
   void to_solver(LocalProblem& problem, Eigen::VectorXd& r);
+  /// Per step, before to_solver: the largest normal shift each contact may have (+∞: any),
+  /// which to_solver takes when the law's is larger (swept contacts, swept_detection.hpp);
+  /// null: none. The first contact where a cap bit, and the law's shift there, are kept.
+  void cap_normal_shift(const std::vector<double>* caps) {
+    caps_ = caps;
+    capped_ = -1;
+  }
+  /// The first contact whose law's normal shift was capped this step (−1: none), its law's shift.
+  long capped() const { return capped_; }
+  double capped_law_shift() const { return capped_law_shift_; }
   /// After a solve: r', u' kept for the status, r and u made true. `error`: the error
   /// the solve reached (DESIGN §1, relative to error_denominator): a contact on its cone
   /// slides only if its slip exceeds what that error leaves unresolved.
@@ -95,6 +105,9 @@ class LawStep {
   /// W's diagonal without compliance, once κ was first added to this step's assembled W.
   Eigen::VectorXd w_diagonal_;
   bool w_has_compliance_ = false;
+  const std::vector<double>* caps_ = nullptr;
+  long capped_ = -1;
+  double capped_law_shift_ = 0;
 };
 
 }  // namespace moreau::kernel

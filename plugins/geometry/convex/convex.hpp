@@ -33,6 +33,8 @@ struct Polygon {
 /// the fault.
 std::vector<V2> convex_polygon(const std::vector<std::array<double, 2>>& vertices);
 MassProperties polygon_mass(const std::vector<V2>& ccw);
+/// Half the smallest width of a convex polygon (its width is smallest across an edge).
+double polygon_half_width(const std::vector<V2>& ccw);
 /// Shape geometry {n, x0, y0, …} placed at a pose.
 Polygon polygon_at(const std::vector<double>& geometry, const Pose& pose);
 /// A `segment` shape {length, thickness} placed at a pose.
@@ -62,6 +64,9 @@ struct Polyhedron {
 /// vertices).
 std::vector<std::vector<int>> hull_faces(const std::vector<V3>& points);
 MassProperties polyhedron_mass(const Polyhedron& body_frame);
+/// Half the smallest width across a face (an upper bound of half the smallest width, which
+/// an edge pair may set; equal for boxes, plates and prisms).
+double polyhedron_half_width(const Polyhedron& p);
 /// Shape geometry placed at a pose: `box` {lx, ly, lz}; `convex` {nv, x0, y0, z0, …, nf,
 /// k0, i…, k1, i…} (faces as vertex indices, counter-clockwise from outside).
 Polyhedron polyhedron_at(const std::string& shape, const std::vector<double>& geometry, const Pose& pose);

@@ -29,6 +29,17 @@ std::vector<V2> convex_polygon(const std::vector<std::array<double, 2>>& in) {
   return v;
 }
 
+double polygon_half_width(const std::vector<V2>& v) {
+  double w = std::numeric_limits<double>::infinity();
+  for (std::size_t i = 0; i < v.size(); ++i) {
+    const V2 a = v[i], e = v[(i + 1) % v.size()] - a;
+    double across = 0;
+    for (const V2& q : v) across = std::max(across, std::fabs(cross(e, q - a)));
+    w = std::min(w, across / norm(e));
+  }
+  return w / 2;
+}
+
 MassProperties polygon_mass(const std::vector<V2>& v) {
   MassProperties m;
   double A = 0, cx = 0, cy = 0, J = 0;

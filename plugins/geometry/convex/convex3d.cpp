@@ -88,6 +88,16 @@ Polyhedron polyhedron_at(const std::string& shape, const std::vector<double>& g0
   return p;
 }
 
+double polyhedron_half_width(const Polyhedron& p) {
+  double w = std::numeric_limits<double>::infinity();
+  for (std::size_t f = 0; f < p.faces.size(); ++f) {
+    double across = 0;
+    for (const V3& q : p.v) across = std::max(across, p.offset[f] - dot(p.normal[f], q));
+    w = std::min(w, across);
+  }
+  return w / 2;
+}
+
 MassProperties polyhedron_mass(const Polyhedron& p) {
   // Sum over tetrahedra (origin, triangle of a face fan): volume, first moment and the
   // covariance ∫x xᵀ (det(A) · A C A ᵀ with C the canonical tetrahedron's covariance).

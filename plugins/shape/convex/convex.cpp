@@ -63,6 +63,7 @@ class Convex : public Shape {
       for (int k = 0; k < 3; ++k) lo[k] = std::min(lo[k], x[k]), hi[k] = std::max(hi[k], x[k]);
     }
   }
+  double half_width(int) const override { return geom::polyhedron_half_width(b_.body_frame); }
   /// The hull computed at build time: its corners and (merged, flat) faces.
   DisplayMesh display_mesh(double) const override { return geom::polyhedron_display(b_.geometry); }
 

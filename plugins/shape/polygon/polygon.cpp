@@ -56,6 +56,11 @@ class Polygon : public Shape {
     }
     lo[2] = hi[2] = 0;
   }
+  double half_width(int) const override {
+    std::vector<geom::V2> v;
+    for (int i = 0; i < static_cast<int>(g_[0]); ++i) v.push_back({g_[1 + 2 * i], g_[2 + 2 * i]});
+    return geom::polygon_half_width(v);
+  }
   DisplayMesh display_mesh(double) const override {
     return geom::outline_display(std::vector<double>(g_.begin() + 1, g_.end()));
   }

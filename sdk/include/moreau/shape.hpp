@@ -56,6 +56,21 @@ class MOREAU_API Shape : public Plugin {
     (void)extent;
     return {};
   }
+  /// Half the shape's smallest width (m): how far another body must move into it to reach
+  /// its middle (a disk or sphere: its radius; a segment: half its thickness; a half-space:
+  /// infinite). The kernel compares a step's motion with it to find the pairs that need
+  /// swept detection (docs/contacts.md, "Fast bodies"); a value too large lets a fast body
+  /// through a thin shape, one too small only costs detection time. The default: half the
+  /// smallest side of the bounding box at the identity pose, exact for shapes aligned with
+  /// their axes (override it for others, e.g. polygons).
+  virtual double half_width(int dim) const {
+    const double zero[4] = {0, 0, 0, 0}, identity[4] = {1, 0, 0, 0};
+    double lo[3], hi[3];
+    bounds(dim, Pose{zero, dim == 2 ? zero : identity}, lo, hi);
+    double w = hi[0] - lo[0];
+    for (int k = 1; k < dim; ++k) w = hi[k] - lo[k] < w ? hi[k] - lo[k] : w;
+    return w / 2;
+  }
 };
 
 }  // namespace moreau
