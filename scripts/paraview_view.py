@@ -52,8 +52,9 @@ def build(xmf, at=None):
         arrows = Glyph(Input=contacts, GlyphType='Arrow', OrientationArray=['POINTS', 'force'],
                        ScaleArray=['POINTS', 'force'], ScaleFactor=0.015 * size / fmax)
         ColorBy(Show(arrows, view), ('POINTS', 'normal_force'))
-        # A body carries several contacts: its point is shared by their lines, so each line
-        # gets its own ends (Shrink 1) before the lines' force becomes a point value.
+        # Each contact's line has its own points (contacts/network); files from before it
+        # share a body's point between its lines, which Shrink 1 separates (a no-op on new
+        # files), before the lines' force becomes a point value.
         network = ExtractBlock(Input=reader, Selectors=['/Root/force_network'])
         ends = CellDatatoPointData(Input=Shrink(Input=network, ShrinkFactor=1.0))
         tubes = Tube(Input=ExtractSurface(Input=ends), Scalars=['POINTS', 'normal_force'], VaryRadius='By Scalar',

@@ -1,14 +1,31 @@
 #include <unistd.h>
 
+#include <csignal>
+
 #include <filesystem>
 #include <ostream>
 
+#include "../run/interrupt.hpp"
 #include "../run/output_sink.hpp"
 #include "../run/scheduler.hpp"
 #include "../scene/builder.hpp"
 #include "commands.hpp"
 
 namespace moreau::kernel {
+
+namespace {
+
+/// A path as one shell word (quoted when it holds anything but plain characters).
+std::string shell_word(const std::string& s) {
+  const bool plain = !s.empty() && s.find_first_not_of("abcdefghijklmnopqrstuvwxyzABCDEFGHIJKLMNOPQRSTUVWXYZ0123456789_-./+,:=@") ==
+                                       std::string::npos;
+  if (plain) return s;
+  std::string q = "'";
+  for (char c : s) q += c == '\'' ? std::string("'\\''") : std::string(1, c);
+  return q + "'";
+}
+
+}  // namespace
 
 int command_run(const RunArgs& args, std::ostream& out, std::ostream& err) {
   return guarded(err, [&] {
@@ -36,6 +53,8 @@ int command_run(const RunArgs& args, std::ostream& out, std::ostream& err) {
       opt.progress_terminal = isatty(STDERR_FILENO) != 0;
     }
     Scheduler scheduler(*world);
+    InterruptHandler interrupts;  // Ctrl-C: stop after the step under way, output complete
+    opt.interrupt = &InterruptHandler::signal();
     RunSummary sum = scheduler.run(opt);
     if (world->contacts) {  // misses are said even with --quiet; a clean run only without it
       const SolveLog& log = world->contacts->solve_log;
@@ -48,6 +67,12 @@ int command_run(const RunArgs& args, std::ostream& out, std::ostream& err) {
     out << "wrote " << std::filesystem::absolute(path).string() << " (steps " << sum.first_step << " to "
         << sum.last_step << ", t = " << static_cast<double>(sum.last_step) * world->h << " s)\n";
     if (exporter) out << exporter->summary() << "\n";
+    if (sum.interrupted_by) {
+      err << "interrupted (" << (sum.interrupted_by == SIGINT ? "Ctrl-C" : "SIGTERM") << ") after step " << sum.last_step
+          << ": " << path << " is complete up to it; continue with:\n  moreau run " << shell_word(args.scene)
+          << (args.out ? " --out " + shell_word(*args.out) : std::string()) << " --restart " << shell_word(path) << "\n";
+      return 128 + sum.interrupted_by;
+    }
     return 0;
   });
 }

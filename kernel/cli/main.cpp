@@ -1,14 +1,60 @@
 // moreau: the command line (DESIGN §3.1).
 #include <CLI/CLI.hpp>
 #include <iostream>
+#include <moreau/version.hpp>
 
+#include "../text/did_you_mean.hpp"
 #include "commands.hpp"
 #include "fclib_cli.hpp"
+
+namespace {
+
+/// What `moreau --version` prints: the program, and the versions of its contracts.
+std::string version_text() {
+  return std::string("moreau ") + MOREAU_VERSION + " (plugin ABI " + std::to_string(MOREAU_ABI_VERSION) + ", SDK " +
+         MOREAU_SDK_VERSION + ", built with " + MOREAU_BUILD_ID + "; scene format moreau-scene/1, output moreau-output/1)";
+}
+
+/// After a parse error: "did you mean" for a mistyped command or option, if one is close.
+void suggest(const CLI::App& app, int argc, char** argv) {
+  const CLI::App* in = &app;
+  for (int i = 1; i < argc; ++i) {
+    const std::string word = argv[i];
+    if (word.rfind("--", 0) == 0) {
+      const std::string name = word.substr(0, word.find('='));
+      std::vector<std::string> options;
+      for (const auto* o : in->get_options())
+        for (const auto& l : o->get_lnames()) options.push_back("--" + l);
+      if (std::find(options.begin(), options.end(), name) == options.end()) {
+        const std::string hint = moreau::kernel::did_you_mean(name, options);
+        if (!hint.empty()) std::cerr << "unknown option " << name << hint << "\n";
+      }
+      continue;
+    }
+    if (word.rfind('-', 0) == 0) continue;
+    // The first word that is not an option names the command (then a subcommand of it).
+    std::vector<std::string> names;
+    for (const auto* sub : in->get_subcommands({})) names.push_back(sub->get_name());
+    if (names.empty()) continue;  // a positional argument (a file)
+    const auto* next = std::find(names.begin(), names.end(), word) != names.end() ? in->get_subcommand(word) : nullptr;
+    if (!next) {
+      const std::string hint = moreau::kernel::did_you_mean(word, names, '\'');
+      std::cerr << "unknown command '" << word << "'" << (hint.empty() ? "" : hint) << " (commands:";
+      for (const auto& n : names) std::cerr << " " << n;
+      std::cerr << ")\n";
+      break;
+    }
+    in = next;
+  }
+}
+
+}  // namespace
 
 int main(int argc, char** argv) {
   using namespace moreau::kernel;
   CLI::App app{"moreau: non-smooth contact dynamics (Moreau-Jean) for collections of bodies in 2D and 3D"};
   app.require_subcommand(1);
+  app.set_version_flag("--version", version_text(), "print the version of moreau and of its formats, then exit");
 
   RunArgs run;
   auto* run_cmd = app.add_subcommand("run", "run a scene");
@@ -38,6 +84,7 @@ int main(int argc, char** argv) {
   try {
     app.parse(argc, argv);
   } catch (const CLI::ParseError& e) {
+    if (e.get_exit_code() != 0) suggest(app, argc, argv);
     const int code = app.exit(e);
     return code == 0 ? 0 : 2;  // usage errors are bad input
   }

@@ -9,6 +9,7 @@
 #include <moreau/contact_fields.hpp>
 #include <moreau/node_fields.hpp>
 
+#include "../run/console.hpp"
 #include "local_frame.hpp"
 #include "stopping_scale.hpp"
 
@@ -138,11 +139,12 @@ void ContactStages::warn_initial_overlaps(const StepContext& c) {
     if (++found > 10) continue;
     ++shown;
     const int b0 = contactors[ct.contactor[0]].body, b1 = contactors[ct.contactor[1]].body;
-    std::fprintf(stderr, "warning: at the start, bodies \"%s\" and \"%s\" overlap by %.3g m (deeper than the alert distance %.3g m)\n",
-                 names[std::min(b0, b1)].c_str(), names[std::max(b0, b1)].c_str(),
-                 -ct.start_gap, alert);
+    char line[512];
+    std::snprintf(line, sizeof line, "at the start, bodies \"%s\" and \"%s\" overlap by %.3g m (deeper than the alert distance %.3g m)",
+                  names[std::min(b0, b1)].c_str(), names[std::max(b0, b1)].c_str(), -ct.start_gap, alert);
+    warn(line);
   }
-  if (found > shown) std::fprintf(stderr, "warning: ... and %d more overlapping contacts at the start\n", found - shown);
+  if (found > shown) warn("... and " + std::to_string(found - shown) + " more overlapping contacts at the start");
 }
 
 void ContactStages::warm_start(StepContext& c) {

@@ -2,10 +2,11 @@
 
 #include <algorithm>
 #include <cmath>
-#include <cstdio>
 #include <moreau/node_fields.hpp>
 #include <moreau/rigid_fields.hpp>
+#include <string>
 
+#include "../run/console.hpp"
 #include "contact_stages.hpp"
 
 namespace moreau::kernel {
@@ -141,7 +142,10 @@ double SweptDetection::approach_speed(int i, int j) const {
 
 bool SweptDetection::fast(int i, int j) const {
   if (!nodes_[(*contactors_)[i].model].x || !nodes_[(*contactors_)[j].model].x) return false;
-  return step_ * approach_speed(i, j) > 0.5 * std::min(half_width_[i], half_width_[j]);
+  // Predicted past or deep enough in the other for its normal to flip takes a travel of
+  // about the sum of the half widths (a disk's centre reaching a wall's mid-line); half of
+  // it leaves a margin of two. Infinite for a half-space, which cannot be crossed.
+  return step_ * approach_speed(i, j) > 0.5 * (half_width_[i] + half_width_[j]);
 }
 
 void SweptDetection::contactor_pose(int i, double t, double* pose) const {
@@ -191,11 +195,10 @@ bool SweptDetection::detect(int d, const Detector& detector, const std::vector<C
   }
   if (!touching) {
     if (unconverged_++ == 0)
-      std::fprintf(stderr,
-                   "warning: swept detection gave up following a fast pair (contactors %d and %d, %d advances): its "
-                   "contacts are those of the predicted configuration, which a body this fast may pass through; "
-                   "a smaller time step avoids it (said once per run)\n",
-                   first, second, max_advances);
+      warn("swept detection gave up following a fast pair (contactors " + std::to_string(first) + " and " +
+           std::to_string(second) + ", " + std::to_string(max_advances) +
+           " advances): its contacts are those of the predicted configuration, which a body this fast may pass "
+           "through; a smaller time step avoids it (said once per run)");
     return false;
   }
   // Touching at t: carry each point to q_θ (time T, before or after t) along the bodies' motion.

@@ -49,8 +49,8 @@ class SweptDetection {
   /// Per step, before the narrow phase: h, T = (1−θ)h and the nodes' start state.
   void begin_step(const std::vector<Contactor>& contactors, const std::vector<ContactModel>& models, const State& state,
                   double theta, double h);
-  /// Whether the pair may move, relative to each other, by more than half the thinner
-  /// shape's half width in a step (then q_θ may lie past, deep in or beside it).
+  /// Whether the pair may move, relative to each other, by more than half the sum of the
+  /// shapes' half widths in a step (then q_θ may lie past, deep in or beside one).
   bool fast(int i, int j) const;
   /// Follows the fast pair (first, second) from q⁻. True when they touch within the step:
   /// `out` then holds the contacts carried to q_θ and `start_gap` each one's gap where

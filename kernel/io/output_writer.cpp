@@ -9,6 +9,7 @@
 
 #include "display_io.hpp"
 #include "field_io.hpp"
+#include "force_network.hpp"
 #include "h5.hpp"
 #include "xdmf.hpp"
 
@@ -346,6 +347,7 @@ std::unique_ptr<OutputWriter> OutputWriter::append(const std::string& path, cons
       // with other output settings, or from before normal_force was written.
       XdmfFrame listed{step, time, nc};
       listed.normal_force = h5::exists(fg.get(), "contacts/normal_force");
+      listed.network = h5::exists(fg.get(), "contacts/network");
       if (impl->header.display) {
         const auto shape = h5::dimensions(fg.get(), "display/points");
         listed.display = !shape.empty() && shape[0] == impl->header.display->vertices();
@@ -393,6 +395,13 @@ void OutputWriter::write_frame(long step, double time, const State& state, long 
         contacts = set.rows();
       }
     }
+    // The viewer's force network: node, contact point, node (force_network.hpp).
+    if (with_contacts) {
+      std::vector<float> network;
+      force_network_points(state, m.header.contactors, Depth::begin, network);
+      h5::Id cg = group_of(g.get(), sets::contacts);
+      h5::write_floats(cg.get(), "network", network.data(), 3 * contacts, state.dimension());
+    }
     // Without the rigid-only layout, a reference point per body (the mean of its nodes'
     // positions) for the force network and for readers.
     if (m.legacy.empty()) {
@@ -418,6 +427,7 @@ void OutputWriter::write_frame(long step, double time, const State& state, long 
   if (!m.frames.empty() && m.frames.back().step == step) m.frames.pop_back();  // rewritten (last frame)
   XdmfFrame listed{step, time, with_contacts ? contacts : 0};
   listed.display = m.header.display != nullptr;
+  listed.network = with_contacts;
   m.frames.push_back(listed);
   // The list costs O(frames) to rewrite: keep it under a tenth of the time between rewrites.
   const auto now = Clock::now();

@@ -45,6 +45,10 @@ struct ContactorInfo {
   std::string shape, group;
   std::array<double, 3> offset{0, 0, 0};
   std::array<double, 4> rotation{1, 0, 0, 0};  ///< 2D: angle in [0]; 3D: unit quaternion w x y z
+  /// How far the shape reaches from its node (m): |offset| + the radius of its bounds at
+  /// the identity pose; infinite for a half-space. The force network's lines end at the
+  /// contact point on the side of a node far larger than its partner (force_network.hpp).
+  double reach = 0;
 };
 
 /// A modelization's element topology for readers and the viewer: `/<set>/cells`.

@@ -230,8 +230,10 @@ struct Writer {
     os << "  </Grid>\n";
   }
 
-  /// Lines between the two bodies of each contact: the geometry is the frame's body
-  /// positions and the connectivity its contacts/bodies, so nothing is written for it.
+  /// A polyline of 3 points per contact, centre – contact point – centre, from the
+  /// frame's contacts/network (points in order: the connectivity is implicit, and no two
+  /// lines share a point, so tubes can be sized per line). Frames written before it: a
+  /// line between the two bodies' positions (connectivity contacts/bodies).
   void force_network(const std::vector<XdmfFrame>& frames) {
     os << "  <Grid Name=\"force_network\" GridType=\"Collection\" CollectionType=\"Temporal\">\n";
     for (const auto& f : frames) {
@@ -243,10 +245,16 @@ struct Writer {
         continue;
       }
       const std::size_t nc = f.contacts;
-      os << "      <Topology TopologyType=\"Polyline\" NumberOfElements=\"" << nc << "\" NodesPerElement=\"2\">";
-      item(os, file, cp + "/bodies", nc, 2, i32);
-      os << "</Topology>\n      <Geometry GeometryType=\"" << geometry << "\">";
-      item(os, file, body_points(f.step), nb, d);
+      if (f.network) {
+        os << "      <Topology TopologyType=\"Polyline\" NumberOfElements=\"" << nc << "\" NodesPerElement=\"3\"/>\n";
+        os << "      <Geometry GeometryType=\"" << geometry << "\">";
+        item(os, file, cp + "/network", 3 * nc, d, f32);
+      } else {
+        os << "      <Topology TopologyType=\"Polyline\" NumberOfElements=\"" << nc << "\" NodesPerElement=\"2\">";
+        item(os, file, cp + "/bodies", nc, 2, i32);
+        os << "</Topology>\n      <Geometry GeometryType=\"" << geometry << "\">";
+        item(os, file, body_points(f.step), nb, d);
+      }
       os << "</Geometry>\n";
       if (f.normal_force) attribute(os, "normal_force", "Scalar", file, cp + "/normal_force", nc, 0, f64, "Cell");
       attribute(os, "force", "Vector", file, cp + "/force", nc, d, f64, "Cell");

@@ -6,9 +6,10 @@
 //  - "shapes": each contactor drawn as its shape (output `display: "shapes"`);
 //  - "contacts": points with normal, force, normal_force, gap and status (Glyph arrows),
 //    and the contact laws' variables (bond, damage, …);
-//  - "force_network": one line per contact joining its two bodies' positions, with
-//    normal_force, force, status and the laws' variables on the lines (Tube, colour by
-//    force; broken bonds: colour by bond).
+//  - "force_network": one polyline per contact, body centre – contact point – body centre
+//    (a far larger body's end is the contact point), with normal_force, force, status and
+//    the laws' variables on the lines (Tube, colour or size by force; broken bonds: colour
+//    by bond). Files from before contacts/network join the two bodies' positions.
 // Every array is a reference into the HDF5 file; nothing is copied.
 #include <cstddef>
 #include <moreau/state.hpp>
@@ -23,6 +24,7 @@ struct XdmfFrame {
   std::size_t contacts;
   bool display = false;      ///< the frame holds display/points
   bool normal_force = true;  ///< the frame holds contacts/normal_force (not in files before it was added)
+  bool network = false;      ///< the frame holds contacts/network (the force network's polylines)
 };
 
 /// Sizes of the header's /display group (all 0: no shapes grid).

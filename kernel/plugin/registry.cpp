@@ -1,5 +1,7 @@
 #include "registry.hpp"
 
+#include "../text/did_you_mean.hpp"
+
 #include <unistd.h>
 
 #include <algorithm>
@@ -149,7 +151,9 @@ const RegistryEntry& Registry::require(Kind kind, const std::string& name, const
   auto names = available(kind);
   std::string paths;
   for (const auto& p : paths_) paths += (paths.empty() ? "" : ", ") + p.string();
-  throw InputError(pointer, std::string("unknown ") + kind_name(kind) + " '" + name + "'; valid names: " +
+  const std::string hint = did_you_mean(name, names, '\'');
+  throw InputError(pointer, std::string("unknown ") + kind_name(kind) + " '" + name + "'" + hint +
+                                (hint.empty() ? "; valid names: " : " Valid names: ") +
                                 (names.empty() ? std::string("(none)") : join(names)) + " (looked for " +
                                 library_file_name(kind, name) + " in: " + (paths.empty() ? "(no folder)" : paths) +
                                 ")");

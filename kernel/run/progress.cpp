@@ -14,7 +14,7 @@ void Progress::update(long step, double time) {
   if (terminal_) {
     if (now - last_draw_ < std::chrono::milliseconds(100)) return;
     last_draw_ = now;
-    draw(step, time, false);
+    draw(step, time);
     return;
   }
   // Not a terminal: a line at every tenth of the run, or every 10 s.
@@ -23,13 +23,21 @@ void Progress::update(long step, double time) {
   if (decile > last_decile_ || now - last_draw_ > std::chrono::seconds(10)) {
     last_decile_ = decile;
     last_draw_ = now;
-    draw(step, time, false);
+    draw(step, time);
   }
 }
 
-void Progress::finish(long step, double time) { draw(step, time, true); }
+void Progress::finish(long step, double time) {
+  // The last line once: not again if update() has just drawn this step.
+  if (step != drawn_step_) draw(step, time);
+  if (terminal_ && drawn_step_ >= 0) {
+    os_ << "\n";
+    os_.flush();
+  }
+}
 
-void Progress::draw(long step, double time, bool final) {
+void Progress::draw(long step, double time) {
+  drawn_step_ = step;
   const long span = std::max(1L, last_ - first_);
   const double frac = std::min(1.0, static_cast<double>(step - first_) / span);
   const double elapsed = std::chrono::duration<double>(std::chrono::steady_clock::now() - start_).count();
@@ -39,16 +47,23 @@ void Progress::draw(long step, double time, bool final) {
     const int width = 30, filled = static_cast<int>(frac * width);
     std::string bar(filled, '#');
     bar += std::string(width - filled, '-');
-    std::snprintf(buf, sizeof buf, "\r[%s] %5.1f%%  step %ld/%ld  t=%.4g s  %.1f s elapsed, %.1f s left ", bar.c_str(),
+    // Back to the line's start, the bar, then erase what a longer earlier line left (ESC [K).
+    std::snprintf(buf, sizeof buf, "\r[%s] %5.1f%%  step %ld/%ld  t=%.4g s  %.1f s elapsed, %.1f s left\033[K", bar.c_str(),
                   100 * frac, step, last_, time, elapsed, eta);
     os_ << buf;
-    if (final) os_ << "\n";
   } else {
     std::snprintf(buf, sizeof buf, "progress: %5.1f%%  step %ld/%ld  t=%.6g s  elapsed %.1f s\n", 100 * frac, step, last_,
                   time, elapsed);
     os_ << buf;
   }
   os_.flush();
+}
+
+void Progress::clear_line() {
+  if (!terminal_ || drawn_step_ < 0) return;
+  os_ << "\r\033[K";
+  os_.flush();
+  drawn_step_ = -1;
 }
 
 }  // namespace moreau::kernel

@@ -6,6 +6,7 @@
 #include <moreau/node_fields.hpp>
 #include <ostream>
 
+#include "console.hpp"
 #include "progress.hpp"
 
 namespace moreau::kernel {
@@ -155,10 +156,14 @@ RunSummary Scheduler::run(const RunOptions& opt) {
 
   std::optional<Progress> progress;
   if (opt.progress) progress.emplace(*opt.progress, opt.progress_terminal, opt.first_step, last);
+  if (progress && opt.progress_terminal) set_active_progress(&*progress);  // warnings erase the bar first
+  struct Reset {
+    ~Reset() { set_active_progress(nullptr); }
+  } reset;
   if (opt.write_first_frame) write(opt.first_step);
 
   long step = opt.first_step;
-  while (step < last && stop.empty()) {
+  while (step < last) {
     bool written = false;
     ctx.step = step;
     ctx.time = static_cast<double>(step) * w_.h;  // never accumulated: restarts stay bit-identical
@@ -181,8 +186,12 @@ RunSummary Scheduler::run(const RunOptions& opt) {
     }
     ++step;
     if (progress) progress->update(step, static_cast<double>(step) * w_.h);
-    // A stop asked after the output stage still gets its frame.
-    if (!stop.empty() && !written) write(step);
+    const int signal = opt.interrupt ? opt.interrupt->load() : 0;
+    if (stop.empty() && signal == 0) continue;
+    // A stop asked after the output stage, or an interrupt, still gets its frame.
+    if (!written) write(step);
+    if (stop.empty()) sum.interrupted_by = signal;
+    break;
   }
   if (progress) progress->finish(step, static_cast<double>(step) * w_.h);
   for (auto& h : w_.hooks) h->finish(w_.state);

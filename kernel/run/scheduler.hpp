@@ -3,6 +3,7 @@
 // hooks before and after each stage. Stages with no work are not called at all (and
 // not timed), so a scene pays only for what it uses.
 #include <array>
+#include <atomic>
 #include <functional>
 #include <iosfwd>
 #include <optional>
@@ -22,6 +23,9 @@ struct RunOptions {
   bool write_first_frame = true;     ///< false when continuing a file that has it already
   std::ostream* progress = nullptr;  ///< nullptr: silent
   bool progress_terminal = false;
+  /// Non-zero asks the run to stop after the step under way, whose frame is then written
+  /// (InterruptHandler::signal(): Ctrl-C). nullptr: never.
+  const std::atomic<int>* interrupt = nullptr;
 };
 
 struct RunSummary {
@@ -29,6 +33,7 @@ struct RunSummary {
   long last_step = 0;  ///< completed steps at the end
   bool stopped_by_hook = false;
   std::string stop_reason;
+  int interrupted_by = 0;  ///< the signal that stopped the run (0: none)
   StageTimer timer;
 };
 

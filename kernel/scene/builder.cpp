@@ -13,6 +13,8 @@
 #include <set>
 
 #include "../contact/placement.hpp"
+#include "../run/console.hpp"
+#include "../text/did_you_mean.hpp"
 #include "display_build.hpp"
 #include "json_file.hpp"
 #include "scene_schema.hpp"
@@ -49,7 +51,8 @@ class SceneChecker {
     top_ = validate_object(root, scene_schema::top(), "", v);
     time_ = validate_object(top_.value("time", json::object()), scene_schema::time(), "/time", v);
     output_ = validate_object(top_.value("output", json::object()), scene_schema::output(), "/output", v);
-    detection_ = validate_object(top_.value("detection", json::object()), scene_schema::detection(), "/detection", v);
+    detection_ = validate_object(top_.value("detection", json::object()), scene_schema::detection(), "/detection", v,
+                                 scene_schema::detection_plugin_keys());
     if (top_.contains("generators") && top_["generators"].is_array() && !top_["generators"].empty())
       errors_.emplace_back("/generators", "no body generator plugins are available yet: list the bodies in \"bodies\"");
 
@@ -80,13 +83,13 @@ class SceneChecker {
         else stop_on_failure_ = f == "stop";
       }
     }
-    if (has_interactions()) {
-      broadphase_ = plugin_use(Kind::broadphase, detection_["broadphase"], "/detection/broadphase");
-      check_detectors();
-    }
+    if (has_interactions() || detection_.contains("broadphase"))
+      broadphase_ = plugin_use(Kind::broadphase, detection_.value("broadphase", json("grid")), "/detection/broadphase", "grid");
+    if (has_interactions()) check_detectors();
     check_export();
 
     if (!errors_.empty()) throw_all();
+    warn_groups_that_never_collide();
   }
 
   std::unique_ptr<World> build(const std::string& output_path) {
@@ -114,7 +117,7 @@ class SceneChecker {
     ctx.body_index = [names](const std::string& name, const std::string& pointer) {
       for (std::size_t i = 0; i < names.size(); ++i)
         if (names[i] == name) return static_cast<int>(i);
-      throw InputError(pointer, "no body named \"" + name + "\"");
+      throw InputError(pointer, "no body named \"" + name + "\"" + did_you_mean(name, names));
     };
 
     try {
@@ -205,6 +208,7 @@ class SceneChecker {
         if (t.count > 0)
           w->topologies.push_back(io::SetTopology{m.modelization->element_set(), m.modelization->node_set(), t.cells, t.count});
       }
+      set_contactor_reach(dim_, w->contactor_info, display_shapes);
       undetected.clear();
       if (!interactions_.empty()) build_contacts(*w, reg, ctx, std::move(contactors), group_index);
       for (const auto& d : drivers_) {
@@ -500,9 +504,8 @@ class SceneChecker {
         if (!materials_.count(body.material)) {
           std::vector<std::string> names;
           for (const auto& [k, d] : materials_) names.push_back(k);
-          std::string msg = "unknown material \"" + body.material + "\"";
-          if (auto n = nearest_key(body.material, names); !n.empty()) msg += "; did you mean \"" + n + "\"?";
-          errors_.emplace_back(ptr + "/material", msg);
+          errors_.emplace_back(ptr + "/material",
+                               "unknown material \"" + body.material + "\"" + did_you_mean(body.material, names));
         }
       }
       json model_params = checked;
@@ -551,9 +554,7 @@ class SceneChecker {
       if (!model_uses_.count(it.key())) {
         std::vector<std::string> used;
         for (const auto& [n, u] : model_uses_) used.push_back(n);
-        std::string msg = "no body uses the modelization \"" + it.key() + "\"";
-        if (auto n = nearest_key(it.key(), used); !n.empty()) msg += "; did you mean \"" + n + "\"?";
-        errors_.emplace_back(ptr, msg);
+        errors_.emplace_back(ptr, "no body uses the modelization \"" + it.key() + "\"" + did_you_mean(it.key(), used));
         continue;
       }
       const RegistryEntry* e = lookup(Kind::modelization, it.key(), ptr);
@@ -616,7 +617,10 @@ class SceneChecker {
       drv.pointer = ptr;
       const std::string name = d["body"].get<std::string>();
       drv.body = body_index(name);
-      if (drv.body < 0) { errors_.emplace_back(ptr + "/body", "no body named \"" + name + "\""); continue; }
+      if (drv.body < 0) {
+        errors_.emplace_back(ptr + "/body", "no body named \"" + name + "\"" + did_you_mean(name, body_names()));
+        continue;
+      }
       drv.velocity.assign(dim_ + rot, std::nan(""));
       auto fill = [&](const char* key, int offset) {
         if (!d.contains(key) || d[key].is_null()) return;
@@ -634,6 +638,12 @@ class SceneChecker {
       }
       drivers_.push_back(drv);
     }
+  }
+
+  std::vector<std::string> body_names() const {
+    std::vector<std::string> names;
+    for (const auto& b : bodies_) names.push_back(b.name);
+    return names;
   }
 
   int body_index(const std::string& name) const {
@@ -666,10 +676,38 @@ class SceneChecker {
       for (int k = 0; k < 2; ++k)
         if (!groups.count(g[k].get<std::string>()))
           errors_.emplace_back(ptr + "/groups/" + std::to_string(k),
-                               "no contactor has group \"" + g[k].get<std::string>() + "\"");
+                               "no contactor has group \"" + g[k].get<std::string>() + "\"" +
+                                   did_you_mean(g[k].get<std::string>(), {groups.begin(), groups.end()}));
       const std::string law = in["law"].get<std::string>();
-      if (!laws_.count(law)) errors_.emplace_back(ptr + "/law", "no law named \"" + law + "\" in \"laws\"");
+      if (!laws_.count(law)) {
+        std::vector<std::string> names;
+        for (const auto& [n, use] : laws_) names.push_back(n);
+        errors_.emplace_back(ptr + "/law", "no law named \"" + law + "\" in \"laws\"" + did_you_mean(law, names));
+      }
       interactions_.push_back({g[0].get<std::string>(), g[1].get<std::string>(), law, ptr});
+    }
+  }
+
+  /// A newcomer's scene often has shapes but no `interactions` (or leaves a group out of
+  /// them): its bodies then fall through each other without a word. Say so.
+  void warn_groups_that_never_collide() const {
+    std::map<std::string, int> contactors;  // per group
+    for (const auto& b : bodies_)
+      for (const auto& c : b.contactors) ++contactors[c.params.has("group") ? c.params.string("group") : "default"];
+    if (contactors.empty()) return;
+    if (!has_interactions()) {
+      warn(file_.path + ": the scene has " + std::to_string(bodies_.size()) + " bodies with contactors but no " +
+           "\"interactions\": nothing will collide (add e.g. \"interactions\": [{\"groups\": [\"" +
+           contactors.begin()->first + "\", \"" + contactors.begin()->first + "\"], \"law\": NAME}] and the law in \"laws\")");
+      return;
+    }
+    for (const auto& [group, count] : contactors) {
+      const bool paired = std::any_of(interactions_.begin(), interactions_.end(),
+                                      [&](const InteractionUse& in) { return in.a == group || in.b == group; });
+      if (!paired)
+        warn(file_.path + ": " + std::to_string(count) + " contactor" + (count == 1 ? "" : "s") + " of group \"" + group +
+             "\" " + (count == 1 ? "is" : "are") + " in no interaction: nothing will collide with " +
+             (count == 1 ? "it" : "them"));
     }
   }
 

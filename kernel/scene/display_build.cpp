@@ -85,4 +85,18 @@ std::shared_ptr<const io::DisplayMeshes> build_display(const State& state, const
   return m;
 }
 
+void set_contactor_reach(int d, std::vector<io::ContactorInfo>& info, const std::vector<const Shape*>& shapes) {
+  const double zero[4] = {0, 0, 0, 0}, identity[4] = {1, 0, 0, 0};
+  for (std::size_t i = 0; i < info.size(); ++i) {
+    double lo[3], hi[3];
+    shapes[i]->bounds(d, Pose{zero, d == 2 ? zero : identity}, lo, hi);
+    double corner = 0, offset = 0;
+    for (int k = 0; k < d; ++k) {
+      corner += std::max(lo[k] * lo[k], hi[k] * hi[k]);
+      offset += info[i].offset[k] * info[i].offset[k];
+    }
+    info[i].reach = std::sqrt(offset) + std::sqrt(corner);
+  }
+}
+
 }  // namespace moreau::kernel

@@ -19,4 +19,9 @@ namespace moreau::kernel {
 std::shared_ptr<const io::DisplayMeshes> build_display(const State& state, const std::vector<io::ContactorInfo>& info,
                                                        const std::vector<const Shape*>& shapes);
 
+/// Each contactor's `reach` (`shapes[i]` is contactor `info[i]`): |offset| + the radius
+/// of its bounds at the identity pose about its own origin; infinite for a half-space. For
+/// the force network (kernel/io/force_network.hpp).
+void set_contactor_reach(int dim, std::vector<io::ContactorInfo>& info, const std::vector<const Shape*>& shapes);
+
 }  // namespace moreau::kernel

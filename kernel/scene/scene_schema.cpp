@@ -105,7 +105,8 @@ Schema interaction() {
 
 Schema detection() {
   Schema s;
-  s.string("broadphase", "broad-phase plugin").fallback("grid");
+  // `broadphase` is a plugin name or {"type": name, ...its parameters}, as `solver`: the
+  // builder validates it against the plugin's schema (detection_plugin_keys()).
   s.number("alert", "alert distance: contacts are created below this gap").units("m").min(0).fallback(0.0);
   return s;
 }

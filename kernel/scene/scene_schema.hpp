@@ -17,6 +17,11 @@ Schema contactor_kernel_keys(int dim);  ///< shape, group, placement: offset, an
 Schema driver();
 Schema interaction();
 Schema detection();
+/// Keys of `detection` that name a plugin (a name, or an object with "type").
+inline const std::vector<std::string>& detection_plugin_keys() {
+  static const std::vector<std::string> keys{"broadphase"};
+  return keys;
+}
 Schema export_problems();  ///< steps or every, directory, min_contacts
 
 }  // namespace moreau::kernel::scene_schema

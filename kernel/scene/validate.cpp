@@ -1,5 +1,7 @@
 #include "validate.hpp"
 
+#include "../text/did_you_mean.hpp"
+
 #include <algorithm>
 #include <cmath>
 #include <sstream>
@@ -7,18 +9,6 @@
 namespace moreau::kernel {
 
 namespace {
-
-std::size_t edit_distance(const std::string& a, const std::string& b) {
-  std::vector<std::size_t> prev(b.size() + 1), cur(b.size() + 1);
-  for (std::size_t j = 0; j <= b.size(); ++j) prev[j] = j;
-  for (std::size_t i = 1; i <= a.size(); ++i) {
-    cur[0] = i;
-    for (std::size_t j = 1; j <= b.size(); ++j)
-      cur[j] = std::min({prev[j] + 1, cur[j - 1] + 1, prev[j - 1] + (a[i - 1] == b[j - 1] ? 0 : 1)});
-    std::swap(prev, cur);
-  }
-  return prev[b.size()];
-}
 
 std::string type_of(const nlohmann::json& j) {
   if (j.is_null()) return "null";
@@ -70,7 +60,8 @@ void check_value(const ParamSpec& p, const nlohmann::json& j, const std::string&
           std::find(p.choices.begin(), p.choices.end(), j.get<std::string>()) == p.choices.end()) {
         std::string c;
         for (const auto& x : p.choices) c += (c.empty() ? "" : ", ") + ("\"" + x + "\"");
-        return fail("unexpected value \"" + j.get<std::string>() + "\": expected one of " + c);
+        return fail("unexpected value \"" + j.get<std::string>() + "\": expected one of " + c +
+                    did_you_mean(j.get<std::string>(), p.choices));
       }
       return;
     case ParamType::vector: {
@@ -122,16 +113,6 @@ std::string pointer_token(const std::string& key) {
   return s;
 }
 
-std::string nearest_key(const std::string& key, const std::vector<std::string>& candidates) {
-  std::string best;
-  std::size_t best_d = std::max<std::size_t>(2, key.size() / 3) + 1;
-  for (const auto& c : candidates) {
-    const std::size_t d = edit_distance(key, c);
-    if (d < best_d) { best_d = d; best = c; }
-  }
-  return best;
-}
-
 nlohmann::json validate_object(const nlohmann::json& value, const Schema& schema, const std::string& pointer,
                                Validation& v, const std::vector<std::string>& also_allowed) {
   if (!value.is_object()) {
@@ -144,7 +125,7 @@ nlohmann::json validate_object(const nlohmann::json& value, const Schema& schema
   for (auto it = value.begin(); it != value.end(); ++it) {
     if (std::find(valid.begin(), valid.end(), it.key()) != valid.end()) continue;
     std::string msg = "unknown key \"" + it.key() + "\"";
-    if (auto near = nearest_key(it.key(), valid); !near.empty()) msg += "; did you mean \"" + near + "\"?";
+    if (auto near = did_you_mean(it.key(), valid); !near.empty()) msg += near;
     else {
       std::string all;
       for (const auto& k : valid) all += (all.empty() ? "" : ", ") + k;

@@ -19,9 +19,6 @@ struct Validation {
 nlohmann::json validate_object(const nlohmann::json& value, const Schema& schema, const std::string& pointer,
                                Validation& v, const std::vector<std::string>& also_allowed = {});
 
-/// The candidate closest to `key` by edit distance, or "" if none is close enough.
-std::string nearest_key(const std::string& key, const std::vector<std::string>& candidates);
-
 /// JSON pointer token escaping (~ → ~0, / → ~1).
 std::string pointer_token(const std::string& key);
 

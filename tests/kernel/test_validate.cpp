@@ -6,6 +6,7 @@
 
 #include "kernel/scene/json_file.hpp"
 #include "kernel/scene/validate.hpp"
+#include "kernel/text/did_you_mean.hpp"
 
 using moreau::InputError;
 using moreau::Schema;
@@ -92,9 +93,17 @@ TEST(Validate, NotAnObject) {
   EXPECT_EQ(e[0], "at /bodies/3: expected an object, got an array");
 }
 
-TEST(Validate, NearestKeyAndPointerTokens) {
-  EXPECT_EQ(moreau::kernel::nearest_key("gravty", {"gravity", "bodies"}), "gravity");
-  EXPECT_EQ(moreau::kernel::nearest_key("xyz", {"gravity", "bodies"}), "");
+TEST(Validate, NearestNameIgnoresCaseAndPointerTokens) {
+  using moreau::kernel::did_you_mean;
+  using moreau::kernel::nearest_name;
+  EXPECT_EQ(nearest_name("gravty", {"gravity", "bodies"}), "gravity");
+  EXPECT_EQ(nearest_name("xyz", {"gravity", "bodies"}), "");
+  EXPECT_EQ(nearest_name("Gravity", {"gravity", "bodies"}), "gravity");
+  EXPECT_EQ(nearest_name("NLGS", {"apgd", "nlgs", "psor"}), "nlgs");
+  EXPECT_EQ(nearest_name("Sphre", {"sphere", "plane"}), "sphere");
+  EXPECT_EQ(did_you_mean("Disk", {"disk", "segment"}, '\''), "; did you mean 'disk'?");
+  EXPECT_EQ(did_you_mean("disk", {"disk"}), "") << "no suggestion of the name itself";
+  EXPECT_EQ(did_you_mean("zzzzzz", {"disk"}), "");
   EXPECT_EQ(moreau::kernel::pointer_token("a/b~c"), "a~1b~0c");
 }
 

@@ -102,4 +102,21 @@ set -e
 [ "$code" -eq 2 ] || fail "expected exit code 2 for the mismatched plugin, got $code"
 grep -qE "plugin ABI mismatch: the library was built for moreau plugin ABI [0-9]+, this moreau has ABI [0-9]+" "$work/bad.err" \
   || { cat "$work/bad.err" >&2; fail "no ABI message"; }
-echo "sdk install: external force and law built, loaded by name and validated; mismatched ABI refused"
+# 5. A hook folder copied out of user/ and renamed, as user/README.md says, builds on its
+#    own against the installed SDK (the header it shares with the other hooks is installed).
+cp -r "$src/user/energy_log" "$work/my_energy"
+(cd "$work/my_energy" && mv energy_log.cpp my_energy.cpp &&
+  sed -i -e 's/MOREAU_REGISTER(EnergyLog, "energy_log")/MOREAU_REGISTER(EnergyLog, "my_energy")/' \
+    -e 's/MOREAU_PLUGIN_LIBRARY("moreau_hook_energy_log")/MOREAU_PLUGIN_LIBRARY("moreau_hook_my_energy")/' my_energy.cpp &&
+  sed -i -e 's/energy_log/my_energy/g' CMakeLists.txt)
+cmake -S "$work/my_energy" -B "$work/my_energy/build" -DCMAKE_PREFIX_PATH="$work/prefix" >/dev/null \
+  || fail "the copied hook folder does not configure on its own"
+cmake --build "$work/my_energy/build" >/dev/null || fail "the copied hook folder does not build on its own"
+[ -f "$work/my_energy/build/libmoreau_hook_my_energy.so" ] || fail "the copied hook was not built"
+sed -e 's/"plugin_paths": \["ext"\]/"plugin_paths": ["ext", "my_energy\/build"]/' \
+  -e 's/"output": {/"hooks": [{"type": "my_energy", "file": "mine.csv", "every": 100}], "output": {/' \
+  "$work/spring.json" > "$work/hook.json"
+(cd "$work" && "$moreau" run hook.json --quiet) || fail "moreau run with the copied hook failed"
+[ "$(wc -l < "$work/mine.csv")" -eq 42 ] || fail "the copied hook wrote $(wc -l < "$work/mine.csv") lines, expected 42"
+
+echo "sdk install: external force and law built, loaded by name and validated; mismatched ABI refused; a copied user hook builds on its own"

@@ -9,8 +9,7 @@
 #include <filesystem>
 #include <moreau/error.hpp>
 #include <moreau/hook.hpp>
-
-#include "common/energy.hpp"
+#include <moreau/rigid_energy.hpp>
 
 namespace {
 

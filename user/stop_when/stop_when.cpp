@@ -6,8 +6,7 @@
 #include <cmath>
 #include <cstdio>
 #include <moreau/hook.hpp>
-
-#include "common/energy.hpp"
+#include <moreau/rigid_energy.hpp>
 
 namespace {
 

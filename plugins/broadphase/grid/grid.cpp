@@ -1,7 +1,11 @@
-// `grid`: a uniform grid broad phase. Each bounded box goes into the cell of its lower
-// corner, with cells at least as large as the largest box, so two overlapping boxes sit
-// in the same or neighbouring cells: the cost is linear in the number of contactors.
-// Unbounded shapes (half-spaces) are tested against every contactor.
+// `grid`: a uniform grid broad phase. Each box goes into the cell of its lower corner,
+// with cells at least as large as the largest box, so two overlapping boxes sit in the
+// same or neighbouring cells: the cost is linear in the number of contactors.
+// Boxes far larger than the typical one (walls, floors: more than `large_ratio` times the
+// median box) would make every cell huge and the cost quadratic, so they are kept out of
+// the cell size and tested against the boxes of every cell they overlap (or against all
+// boxes, if that is fewer). Unbounded shapes (half-spaces) are tested against every
+// contactor.
 #include <algorithm>
 #include <array>
 #include <cmath>
@@ -15,25 +19,34 @@ class Grid : public BroadPhase {
  public:
   static Schema schema() {
     Schema s;
-    s.number("cell", "cell size (0: the largest bounding box)").units("m").min(0).fallback(0.0);
+    s.number("cell", "cell size (0: the largest box among those at most large_ratio times the median box; "
+                     "boxes larger than the cell are tested against the cells they overlap)")
+        .units("m").min(0).fallback(0.0);
+    s.number("large_ratio", "with cell 0: boxes larger than this many times the median box (walls, floors) are "
+                            "kept out of the cell size").min(1).fallback(4.0);
     return s;
   }
   static constexpr const char* doc = "uniform grid broad phase (linear cost)";
-  Grid(const Params& p, const BuildContext&) : cell_(p.has("cell") ? p.number("cell") : 0.0) {}
+  Grid(const Params& p, const BuildContext&)
+      : cell_(p.has("cell") ? p.number("cell") : 0.0), large_ratio_(p.has("large_ratio") ? p.number("large_ratio") : 4.0) {}
 
   void pairs(const BroadPhaseInput& in, std::vector<std::pair<int, int>>& out) override {
     out.clear();
     const std::size_t n = in.body.size();
     const int d = in.dim;
-    std::vector<int> bounded, unbounded;
-    double size = cell_;
+    std::vector<int> bounded, unbounded, large;
+    extent_of_.resize(n);
     for (std::size_t i = 0; i < n; ++i) {
       bool finite = true;
-      for (int k = 0; k < d; ++k) finite &= std::isfinite(in.lo[3 * i + k]) && std::isfinite(in.hi[3 * i + k]);
+      double e = 0;
+      for (int k = 0; k < d; ++k) {
+        finite &= std::isfinite(in.lo[3 * i + k]) && std::isfinite(in.hi[3 * i + k]);
+        e = std::max(e, in.hi[3 * i + k] - in.lo[3 * i + k]);
+      }
+      extent_of_[i] = e;
       (finite ? bounded : unbounded).push_back(static_cast<int>(i));
-      if (finite && cell_ == 0)
-        for (int k = 0; k < d; ++k) size = std::max(size, in.hi[3 * i + k] - in.lo[3 * i + k]);
     }
+    const double size = split_large(bounded, large);
     auto ok = [&](int i, int j) {
       if (in.body[i] == in.body[j]) return false;
       if (!in.interacts[in.group[i] * in.groups + in.group[j]]) return false;
@@ -42,12 +55,14 @@ class Grid : public BroadPhase {
       return true;
     };
     auto push = [&](int i, int j) { out.emplace_back(std::min(i, j), std::max(i, j)); };
+    packed_.clear();
     if (size > 0 && !bounded.empty()) {
       // Cells are hashed into a table of 2^k ≥ 2n buckets, filled by a counting sort into
       // one packed array (cell, box, body, group of each contactor, bucket after bucket):
       // linear time, and the neighbour scans read contiguous memory instead of chasing
       // contactor indices through the input arrays.
       const double inv = 1 / size;
+      inv_ = inv;
       // Dense cell numbering (x fastest) when the occupied region has at most 8 cells per
       // contactor: cells near in space are near in memory, so the scans stay in cache.
       // Otherwise (scattered contactors) cells are hashed into 2^k ≥ 2n buckets.
@@ -65,6 +80,10 @@ class Grid : public BroadPhase {
           cmax[k] = std::max(cmax[k], c);
         }
         if (d == 2) cell_of_[i][2] = 0;
+      }
+      for (int k = 0; k < 3; ++k) {
+        block_lo_[k] = k < d ? cmin[k] : 0;
+        block_hi_[k] = k < d ? cmax[k] : 0;
       }
       double dense_cells = 1;
       for (int k = 0; k < d; ++k) dense_cells *= static_cast<double>(cmax[k] - cmin[k] + 3);
@@ -119,10 +138,86 @@ class Grid : public BroadPhase {
         if (static_cast<int>(j) != u && (std::find(unbounded.begin(), unbounded.end(), static_cast<int>(j)) == unbounded.end() || u < static_cast<int>(j)) &&
             ok(u, static_cast<int>(j)))
           push(u, static_cast<int>(j));
+    large_pairs(in, large, out);
     sort_pairs(n, out);
   }
 
  private:
+  /// The cell size; moves the boxes larger than it from `bounded` to `large`. A given
+  /// `cell` is the size; with 0 it is the largest box among those at most `large_ratio`
+  /// times the median box.
+  double split_large(std::vector<int>& bounded, std::vector<int>& large) {
+    if (bounded.empty()) return cell_;
+    double size = cell_;
+    if (size == 0) {
+      sizes_.clear();
+      for (int i : bounded) sizes_.push_back(extent_of_[i]);
+      auto mid = sizes_.begin() + static_cast<std::ptrdiff_t>(sizes_.size() / 2);
+      std::nth_element(sizes_.begin(), mid, sizes_.end());
+      const double limit = large_ratio_ * *mid;
+      for (int i : bounded)
+        if (extent_of_[i] <= limit) size = std::max(size, extent_of_[i]);
+    }
+    std::size_t kept = 0;
+    for (int i : bounded) {
+      if (extent_of_[i] > size) large.push_back(i);
+      else bounded[kept++] = i;
+    }
+    bounded.resize(kept);
+    return size;
+  }
+
+  /// Pairs of a large box: with the grid's boxes in every cell it overlaps (a box belongs
+  /// to the cell of its lower corner, so the scan starts a cell lower), or with every
+  /// grid box if that is fewer to test; then large boxes with each other.
+  void large_pairs(const BroadPhaseInput& in, const std::vector<int>& large, std::vector<std::pair<int, int>>& out) {
+    if (large.empty()) return;
+    const int d = in.dim;
+    auto overlap = [&](const double* lo, const double* hi, const Item& b) {
+      for (int k = 0; k < d; ++k)
+        if (hi[k] < b.lo[k] || b.hi[k] < lo[k]) return false;
+      return true;
+    };
+    for (int L : large) {
+      const double* lo = &in.lo[3 * L];
+      const double* hi = &in.hi[3 * L];
+      const int body = in.body[L], group = in.group[L];
+      auto consider = [&](const Item& b) {
+        if (b.body == body || !in.interacts[group * in.groups + b.group] || !overlap(lo, hi, b)) return;
+        out.emplace_back(std::min(L, b.index), std::max(L, b.index));
+      };
+      if (!packed_.empty()) {
+        // The cells the box overlaps, within the block that holds grid boxes.
+        std::int64_t from[3] = {0, 0, 0}, to[3] = {0, 0, 0};
+        double cells = 1;
+        for (int k = 0; k < d; ++k) {
+          from[k] = std::max(static_cast<std::int64_t>(std::floor(lo[k] * inv_)) - 1, block_lo_[k]);
+          to[k] = std::min(static_cast<std::int64_t>(std::floor(hi[k] * inv_)), block_hi_[k]);
+          cells *= static_cast<double>(std::max<std::int64_t>(0, to[k] - from[k] + 1));
+        }
+        if (cells <= static_cast<double>(packed_.size())) {
+          for (std::int64_t z = from[2]; z <= to[2]; ++z)
+            for (std::int64_t y = from[1]; y <= to[1]; ++y)
+              for (std::int64_t x = from[0]; x <= to[0]; ++x) {
+                const std::uint64_t h = bucket(x, y, z);
+                for (std::size_t m = start_[h]; m < start_[h + 1]; ++m) {
+                  const Item& b = packed_[m];
+                  if (b.cell[0] == x && b.cell[1] == y && b.cell[2] == z) consider(b);
+                }
+              }
+        } else {
+          for (const Item& b : packed_) consider(b);
+        }
+      }
+      for (int M : large) {
+        if (M <= L || in.body[M] == body || !in.interacts[group * in.groups + in.group[M]]) continue;
+        bool touch = true;
+        for (int k = 0; k < d; ++k) touch &= !(hi[k] < in.lo[3 * M + k] || in.hi[3 * M + k] < lo[k]);
+        if (touch) out.emplace_back(L, M);
+      }
+    }
+  }
+
   /// Sorts the pairs by (first, second) in linear time: a counting sort on the first index,
   /// then each first's few partners sorted in place (a comparison sort of all pairs was the
   /// one super-linear step). Every pair is found once (one cell per box, each neighbour
@@ -152,7 +247,10 @@ class Grid : public BroadPhase {
     return static_cast<std::uint64_t>(x) * 73856093ULL ^ static_cast<std::uint64_t>(y) * 19349663ULL ^
            static_cast<std::uint64_t>(z) * 83492791ULL;
   }
-  double cell_;
+  double cell_, large_ratio_;
+  std::vector<double> extent_of_, sizes_;  // per contactor: largest side of its box; scratch for the median
+  double inv_ = 0;                          // 1 / cell size of the last grid
+  std::int64_t block_lo_[3] = {0, 0, 0}, block_hi_[3] = {0, 0, 0};  // cells that hold grid boxes
   struct Item {
     std::array<std::int64_t, 3> cell;
     int index, body, group;

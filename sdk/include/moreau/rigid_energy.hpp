@@ -1,6 +1,7 @@
 #pragma once
-// Energies of the rigid bodies from the State (shared by the example hooks): the rows of
-// `rigid.nodes` (other modelizations' bodies are not counted).
+// Energies of the rigid bodies from the State: the rows of `rigid.nodes` (other
+// modelizations' bodies are not counted). What the example hooks of user/ log and test;
+// installed with the SDK, so a hook copied out of user/ builds on its own.
 #include <cmath>
 #include <moreau/rigid_fields.hpp>
 #include <moreau/state.hpp>

@@ -1,0 +1,216 @@
+// What a new user runs into first (issue 11, point 5): suggestions for every mistyped name,
+// `--version`, grid parameters from the scene, a word when nothing can collide, Ctrl-C,
+// and the force network drawn through contact points.
+#include <gtest/gtest.h>
+
+#include <fcntl.h>
+#include <signal.h>
+#include <spawn.h>
+#include <sys/wait.h>
+
+#include <chrono>
+#include <filesystem>
+#include <fstream>
+#include <sstream>
+#include <thread>
+
+#include "cli_runner.hpp"
+#include "h5_read.hpp"
+#include "scenes.hpp"
+
+extern char** environ;
+namespace fs = std::filesystem;
+using namespace moreau_test;
+
+namespace {
+
+std::string replace(std::string s, const std::string& from, const std::string& to) {
+  const auto p = s.find(from);
+  if (p == std::string::npos) throw std::logic_error("scene template has no " + from);
+  return s.replace(p, from.size(), to);
+}
+
+/// A disk on a floor segment, a second disk on it: contacts disk–floor and disk–disk.
+std::string stack_scene(const std::string& detection = R"("alert": 0.001)", const std::string& extra = "") {
+  return R"({"format": "moreau-scene/1", "dimension": 2, "time": {"step": 0.001, "duration": 0.01},
+  "gravity": [0, -9.81], "materials": {"rock": {"density": 2000}},
+  "laws": {"rough": {"type": "coulomb", "friction": 0.3}},
+  "bodies": [
+    {"name": "floor", "fixed": true, "position": [0, -0.05], "contactors": [{"shape": "segment", "length": 2, "thickness": 0.1, "group": "wall"}]},
+    {"name": "low", "material": "rock", "position": [0.3, 0.1], "contactors": [{"shape": "disk", "radius": 0.1, "group": "grain"}]},
+    {"name": "high", "material": "rock", "position": [0.3, 0.3], "contactors": [{"shape": "disk", "radius": 0.1, "group": "grain"}]}
+  ],
+  "interactions": [{"groups": ["grain", "wall"], "law": "rough"}, {"groups": ["grain", "grain"], "law": "rough"}],
+  "detection": {)" + detection + R"(},
+  "output": {"every": 5})" + extra + "}";
+}
+
+Result check_text(const std::string& name, const std::string& scene) {
+  const fs::path dir = scratch_dir(name);
+  return run_moreau({"check", write_file(dir, "scene.json", scene).string()}, dir);
+}
+
+}  // namespace
+
+TEST(Newcomer, VersionNamesTheProgramAndItsContracts) {
+  const Result r = run_moreau({"--version"});
+  EXPECT_EQ(r.code, 0) << r.err;
+  EXPECT_EQ(r.out.rfind("moreau 0.", 0), 0u) << r.out;
+  for (const char* part : {"plugin ABI ", "SDK ", "moreau-scene/1", "moreau-output/1"})
+    EXPECT_NE(r.out.find(part), std::string::npos) << part << " in: " << r.out;
+}
+
+// Every kind of name a scene or the command line holds gets the nearest valid one,
+// whatever the case.
+TEST(Newcomer, DidYouMeanForEveryUnknownNameIgnoringCase) {
+  const std::string base = stack_scene();
+  struct Case {
+    std::string from, to, expected;
+  };
+  const std::vector<Case> cases = {
+      {R"("shape": "disk", "radius": 0.1, "group": "grain"}]},
+    {"name": "high")", R"("shape": "Disk", "radius": 0.1, "group": "grain"}]},
+    {"name": "high")", "unknown shape 'Disk'; did you mean 'disk'?"},
+      {R"("type": "coulomb")", R"("type": "Coulomb")", "unknown law 'Coulomb'; did you mean 'coulomb'?"},
+      {R"("output": {"every": 5})", R"("output": {"every": 5}, "solver": {"type": "NLGS"})",
+       "unknown solver 'NLGS'; did you mean 'nlgs'?"},
+      {R"("alert": 0.001)", R"("alert": 0.001, "broadphase": "Grid")", "unknown broadphase 'Grid'; did you mean 'grid'?"},
+      {R"("output": {"every": 5})", R"("output": {"every": 5}, "hooks": [{"type": "energylog"}])",
+       "unknown hook 'energylog'; did you mean 'energy_log'?"},
+      {R"("output": {"every": 5})", R"("output": {"every": 5}, "forces": [{"type": "Constant", "body": "low"}])",
+       "unknown force 'Constant'; did you mean 'constant'?"},
+      {R"("time": {"step": 0.001, "duration": 0.01})", R"("time": {"step": 0.001, "duration": 0.01, "integrator": "Theta"})",
+       "unknown integrator 'Theta'; did you mean 'theta'?"},
+      {R"("name": "floor", "fixed")", R"("name": "floor", "model": "Rigid", "fixed")",
+       "unknown modelization 'Rigid'; did you mean 'rigid'?"},
+      {R"("gravity")", R"("Gravity")", "unknown key \"Gravity\"; did you mean \"gravity\"?"},
+      {R"("alert": 0.001)", R"("Alert": 0.001)", "unknown key \"Alert\"; did you mean \"alert\"?"},
+      {R"("material": "rock", "position": [0.3, 0.3])", R"("material": "Rock", "position": [0.3, 0.3])",
+       "unknown material \"Rock\"; did you mean \"rock\"?"},
+      {R"("law": "rough"}, {"groups": ["grain", "grain"])", R"("law": "Rough"}, {"groups": ["grain", "grain"])",
+       "no law named \"Rough\" in \"laws\"; did you mean \"rough\"?"},
+      {R"({"groups": ["grain", "wall"])", R"({"groups": ["grains", "wall"])",
+       "no contactor has group \"grains\"; did you mean \"grain\"?"},
+      {R"("output": {"every": 5})", R"("output": {"every": 5, "display": "shape"})",
+       "expected one of \"shapes\", \"points\"; did you mean \"shapes\"?"},
+      {R"("output": {"every": 5})", R"("output": {"every": 5}, "drivers": [{"body": "Low", "velocity": [0, 0]}])",
+       "no body named \"Low\"; did you mean \"low\"?"},
+  };
+  for (const auto& c : cases) {
+    const Result r = check_text("dym", replace(base, c.from, c.to));
+    EXPECT_EQ(r.code, 2) << c.to;
+    EXPECT_NE(r.err.find(c.expected), std::string::npos) << "expected: " << c.expected << "\ngot:\n" << r.err;
+  }
+  // The command line: commands and options.
+  const Result command = run_moreau({"rnu", "scene.json"});
+  EXPECT_EQ(command.code, 2);
+  EXPECT_NE(command.err.find("unknown command 'rnu'; did you mean 'run'?"), std::string::npos) << command.err;
+  const Result option = run_moreau({"run", "scene.json", "--Steps", "3"});
+  EXPECT_EQ(option.code, 2);
+  EXPECT_NE(option.err.find("unknown option --Steps; did you mean \"--steps\"?"), std::string::npos) << option.err;
+}
+
+TEST(Newcomer, GridBroadPhaseParametersFromTheScene) {
+  const std::string scene = stack_scene(R"("alert": 0.001, "broadphase": {"type": "grid", "cell": 0.5})");
+  const fs::path dir = scratch_dir("grid_params");
+  const fs::path path = write_file(dir, "scene.json", scene);
+  Result r = run_moreau({"check", path.string()}, dir);
+  EXPECT_EQ(r.code, 0) << r.err;
+  r = run_moreau({"run", path.string(), "--quiet"}, dir);
+  EXPECT_EQ(r.code, 0) << r.err;
+  const Result bad = check_text("grid_params_bad", replace(scene, R"("cell": 0.5)", R"("cel": 0.5)"));
+  EXPECT_EQ(bad.code, 2);
+  EXPECT_NE(bad.err.find("at /detection/broadphase/cel: unknown key \"cel\"; did you mean \"cell\"?"), std::string::npos)
+      << bad.err;
+  const Result negative = check_text("grid_params_negative", replace(scene, R"("cell": 0.5)", R"("cell": -1)"));
+  EXPECT_EQ(negative.code, 2);
+  EXPECT_NE(negative.err.find("at /detection/broadphase/cell: value -1 out of range"), std::string::npos) << negative.err;
+}
+
+TEST(Newcomer, WarnsWhenContactorsCanNeverCollide) {
+  // No interactions at all.
+  std::string none = stack_scene();
+  none = replace(none, R"("interactions": [{"groups": ["grain", "wall"], "law": "rough"}, {"groups": ["grain", "grain"], "law": "rough"}],)", "");
+  Result r = check_text("no_interactions", none);
+  EXPECT_EQ(r.code, 0) << r.err;
+  EXPECT_NE(r.err.find("warning: "), std::string::npos) << r.err;
+  EXPECT_NE(r.err.find("no \"interactions\": nothing will collide"), std::string::npos) << r.err;
+  // The walls left out.
+  r = check_text("group_left_out", replace(stack_scene(), R"({"groups": ["grain", "wall"], "law": "rough"}, )", ""));
+  EXPECT_EQ(r.code, 0) << r.err;
+  EXPECT_NE(r.err.find("1 contactor of group \"wall\" is in no interaction: nothing will collide with it"), std::string::npos)
+      << r.err;
+  // Contact-free scenes (no contactors) and complete ones say nothing.
+  EXPECT_EQ(check_text("projectile", projectile_scene()).err.find("warning"), std::string::npos);
+  EXPECT_EQ(check_text("complete", stack_scene()).err.find("warning"), std::string::npos);
+}
+
+// Lines of the force network go through the contact point: a disk's end is its centre,
+// the floor's (far larger) is the contact point, not the floor's centre.
+TEST(Newcomer, ForceNetworkLinesEndAtContactPointsOnWalls) {
+  const fs::path dir = scratch_dir("network");
+  const fs::path scene = write_file(dir, "scene.json", stack_scene());
+  ASSERT_EQ(run_moreau({"run", scene.string(), "--quiet"}, dir).code, 0);
+  const std::string file = (dir / "out.h5").string(), frame = "/frames/00000010/";
+  const auto bodies = read_doubles(file, frame + "contacts/bodies");
+  const auto point = read_doubles(file, frame + "contacts/point");
+  const auto network = read_doubles(file, frame + "contacts/network");
+  const auto position = read_doubles(file, frame + "position");
+  const std::size_t nc = bodies.size() / 2;
+  ASSERT_EQ(nc, 2u);
+  ASSERT_EQ(network.size(), nc * 3 * 2);
+  int walls = 0;
+  for (std::size_t c = 0; c < nc; ++c)
+    for (int side = 0; side < 2; ++side) {
+      const int b = static_cast<int>(bodies[2 * c + side]);
+      const double* end = &network[6 * c + (side == 0 ? 0 : 4)];
+      const double* expected = b == 0 ? &point[2 * c] : &position[2 * b];  // body 0: the floor
+      walls += b == 0;
+      for (int k = 0; k < 2; ++k) EXPECT_NEAR(end[k], expected[k], 1e-6) << "contact " << c << " body " << b;
+      for (int k = 0; k < 2; ++k) EXPECT_NEAR(network[6 * c + 2 + k], point[2 * c + k], 1e-6) << "middle point";
+    }
+  EXPECT_EQ(walls, 1);
+}
+
+// Ctrl-C stops after the step under way: exit 128 + SIGINT, a complete self-contained
+// output (no frames folder), and a line giving the --restart command, which continues.
+TEST(Newcomer, CtrlCLeavesACompleteOutputAndSaysHowToContinue) {
+  const fs::path dir = scratch_dir("ctrl_c");
+  const fs::path scene =
+      write_file(dir, "scene.json", projectile_scene("", "\"step\": 0.0001, \"duration\": 100000"));
+  std::string exe = MOREAU_EXE, run = "run", sc = scene.string(), o = "--out", path = (dir / "out.h5").string();
+  char* argv[] = {exe.data(), run.data(), sc.data(), o.data(), path.data(), nullptr};
+  posix_spawn_file_actions_t fa;
+  posix_spawn_file_actions_init(&fa);
+  posix_spawn_file_actions_addopen(&fa, 2, (dir / "err.txt").c_str(), O_WRONLY | O_CREAT | O_TRUNC, 0644);
+  posix_spawn_file_actions_addopen(&fa, 1, (dir / "out.txt").c_str(), O_WRONLY | O_CREAT | O_TRUNC, 0644);
+  pid_t pid;
+  ASSERT_EQ(posix_spawn(&pid, MOREAU_EXE, &fa, nullptr, argv, environ), 0);
+  posix_spawn_file_actions_destroy(&fa);
+  // Until the run is under way (frames every 5 steps: a few are listed).
+  for (int i = 0; i < 600 && !fs::exists(dir / "out.h5.frames" / "00000020.h5"); ++i)
+    std::this_thread::sleep_for(std::chrono::milliseconds(50));
+  kill(pid, SIGINT);
+  int status = 0;
+  for (int i = 0; i < 600 && waitpid(pid, &status, WNOHANG) == 0; ++i)
+    std::this_thread::sleep_for(std::chrono::milliseconds(50));
+  if (waitpid(pid, &status, WNOHANG) == 0) {
+    kill(pid, SIGKILL);
+    waitpid(pid, &status, 0);
+    FAIL() << "the run did not end after Ctrl-C";
+  }
+  ASSERT_TRUE(WIFEXITED(status)) << "ended by a signal";
+  EXPECT_EQ(WEXITSTATUS(status), 128 + SIGINT);
+  std::ifstream in(dir / "err.txt");
+  const std::string err((std::istreambuf_iterator<char>(in)), std::istreambuf_iterator<char>());
+  const std::string hint = "continue with:\n  moreau run " + scene.string() + " --out " + path + " --restart " + path;
+  EXPECT_NE(err.find(hint), std::string::npos) << err;
+  EXPECT_FALSE(fs::exists(dir / "out.h5.frames")) << "the output is one self-contained file";
+  const auto frames = frame_names(path);
+  ASSERT_GE(frames.size(), 5u);
+  EXPECT_EQ(read_doubles(path, "/frames/" + frames.back() + "/position").size(), 4u);
+  // The line's command continues the run.
+  const Result more = run_moreau({"run", scene.string(), "--out", path, "--restart", path, "--steps", "10", "--quiet"}, dir);
+  EXPECT_EQ(more.code, 0) << more.err;
+  EXPECT_GT(frame_names(path).size(), frames.size());
+}
