@@ -1,7 +1,8 @@
 #include "solve_log.hpp"
 
+#include "../run/console.hpp"
+
 #include <cstdio>
-#include <iostream>
 #include <ostream>
 
 namespace moreau::kernel {
@@ -19,11 +20,12 @@ void SolveLog::note_miss(long step, const SolverReport& report, const std::strin
   first_miss_ = step;
   // Once, at the first miss: the user learns now, not after hours, that the run is not
   // solved to its tolerance (and where the residual is largest).
-  std::cerr << "\nwarning: step " << step << ": the contact solver stopped at error " << scientific(report.error)
-            << (tolerance > 0 ? " above its tolerance " + scientific(tolerance) : std::string(" without converging"))
-            << " after " << report.iterations << " iterations"
-            << (bodies.empty() ? std::string() : "; largest residual at the contact of " + bodies)
-            << ". The run goes on (\"on_failure\": \"stop\" would end it); the end-of-run summary counts such steps.\n";
+  // warn(): on a terminal the progress bar is erased first, so the line stands on its own.
+  warn("step " + std::to_string(step) + ": the contact solver stopped at error " + scientific(report.error) +
+       (tolerance > 0 ? " above its tolerance " + scientific(tolerance) : std::string(" without converging")) +
+       " after " + std::to_string(report.iterations) + " iterations" +
+       (bodies.empty() ? std::string() : "; largest residual at the contact of " + bodies) +
+       ". The run goes on (\"on_failure\": \"stop\" would end it); the end-of-run summary counts such steps.");
 }
 
 void SolveLog::print_summary(std::ostream& err) const {
