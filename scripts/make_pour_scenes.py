@@ -133,7 +133,6 @@ def silo_2d(columns=20, rows=30, seed=4):
         "interactions": [{"groups": ["grain", "grain"], "law": "grain_grain"},
                          {"groups": ["grain", "wall"], "law": "grain_wall"}],
         "detection": {"broadphase": {"type": "grid"}, "alert": 0.001},
-        "solver": {"type": "nlgs", "tolerance": 1e-4, "max_iterations": 200},
         "output": {"file": "silo_2d.h5", "every": 40},
     }
 
