@@ -47,7 +47,6 @@ def disks_in_box_2d(n_x=12, n_y=16, radius=0.01, seed=1):
         "interactions": [{"groups": ["grain", "grain"], "law": "grain_grain"},
                          {"groups": ["grain", "wall"], "law": "grain_wall"}],
         "detection": {"broadphase": "grid", "alert": 0.002},
-        "solver": {"type": "nlgs", "tolerance": 1e-5, "max_iterations": 300},
         "output": {"file": "disks_in_box_2d.h5", "every": 40},
     }
 
