@@ -81,7 +81,6 @@ def spheres_in_box_3d(n=6, layers=8, radius=0.01, seed=2):
         "interactions": [{"groups": ["grain", "grain"], "law": "grain_grain"},
                          {"groups": ["grain", "wall"], "law": "grain_wall"}],
         "detection": {"broadphase": "grid", "alert": 0.002},
-        "solver": {"type": "nlgs", "tolerance": 1e-4, "max_iterations": 200},
         "output": {"file": "spheres_in_box_3d.h5", "every": 40},
     }
 
@@ -188,7 +187,6 @@ def clusters_3d(n=4, layers=4, radius=0.01, seed=3):
         "interactions": [{"groups": ["grain", "grain"], "law": "grain_grain"},
                          {"groups": ["grain", "wall"], "law": "grain_wall"}],
         "detection": {"broadphase": "grid", "alert": 0.002},
-        "solver": {"type": "nlgs", "tolerance": 1e-4, "max_iterations": 200},
         "output": {"file": "clusters_3d.h5", "every": 40},
     }
 
