@@ -145,6 +145,37 @@ TEST(Newcomer, WarnsWhenContactorsCanNeverCollide) {
   EXPECT_EQ(check_text("complete", stack_scene()).err.find("warning"), std::string::npos);
 }
 
+// Newton's restitution with friction can gain energy at impacts off a body's centre
+// (tests/validation/test_bounce.cpp measures it): a law with e > 0.8 and μ > 0 that reaches
+// a moving polygon is named in a warning; disks (normals through their centres), a
+// frictionless law and e ≤ 0.8 say nothing.
+TEST(Newcomer, WarnsWhereRestitutionWithFrictionCanGainEnergy) {
+  const std::string law = R"("rough": {"type": "coulomb", "friction": 0.3})";
+  const std::string square =
+      R"({"shape": "polygon", "vertices": [[-0.1, -0.1], [0.1, -0.1], [0.1, 0.1], [-0.1, 0.1]], "group": "grain"})";
+  const std::string disk = R"({"shape": "disk", "radius": 0.1, "group": "grain"})";
+  const auto scene = [&](const std::string& laws, bool squares) {
+    std::string s = replace(stack_scene(), law, laws);
+    return squares ? replace(s, disk, square) : s;
+  };
+  const std::string bouncy = R"("rough": {"type": "coulomb", "friction": 0.3, "restitution": 0.9})";
+  Result r = check_text("restitution_squares", scene(bouncy, true));
+  EXPECT_EQ(r.code, 0) << r.err;
+  EXPECT_NE(r.err.find("warning: "), std::string::npos) << r.err;
+  EXPECT_NE(r.err.find("law \"rough\": Newton restitution (e = 0.9) with friction (mu = 0.3) can gain energy at an "
+                       "impact off a body's centre (group \"grain\""),
+            std::string::npos)
+      << r.err;
+  EXPECT_EQ(check_text("restitution_disks", scene(bouncy, false)).err.find("warning"), std::string::npos);
+  EXPECT_EQ(check_text("restitution_frictionless",
+                       scene(R"("rough": {"type": "coulomb", "friction": 0, "restitution": 1})", true))
+                .err.find("warning"),
+            std::string::npos);
+  EXPECT_EQ(check_text("restitution_low", scene(R"("rough": {"type": "coulomb", "friction": 0.3, "restitution": 0.8})", true))
+                .err.find("warning"),
+            std::string::npos);
+}
+
 // Lines of the force network go through the contact point: a disk's end is its centre,
 // the floor's (far larger) is the contact point, not the floor's centre.
 TEST(Newcomer, ForceNetworkLinesEndAtContactPointsOnWalls) {
