@@ -18,6 +18,27 @@ from paraview.simple import (CellDatatoPointData, ColorBy, ExtractBlock, Extract
                              XDMFReader)
 
 
+def typical_arm(network, time):
+    """The median length of the force network's arms (centre to contact point: about a
+    grain's radius); 0 when there are none."""
+    from paraview import servermanager
+    from paraview.simple import MergeBlocks
+    merged = MergeBlocks(Input=network)
+    merged.UpdatePipeline(time)
+    data = servermanager.Fetch(merged)
+    points = data.GetPoints()
+    lengths = []
+    for c in range(data.GetNumberOfCells()):
+        ids = data.GetCell(c).GetPointIds()
+        for k in range(ids.GetNumberOfIds() - 1):
+            a, b = points.GetPoint(ids.GetId(k)), points.GetPoint(ids.GetId(k + 1))
+            length = sum((a[i] - b[i]) ** 2 for i in range(3)) ** 0.5
+            if length > 0:  # a wall's arm ends at the contact point: length 0
+                lengths.append(length)
+    lengths.sort()
+    return lengths[len(lengths) // 2] if lengths else 0.0
+
+
 def build(xmf, at=None):
     # The legacy XDMF reader: the Xdmf3 readers give the point grids no cells.
     reader = XDMFReader(FileNames=[os.path.abspath(xmf)])
@@ -48,17 +69,21 @@ def build(xmf, at=None):
     contacts = ExtractBlock(Input=reader, Selectors=['/Root/contacts'])
     contacts.UpdatePipeline(time)
     if contacts.GetDataInformation().GetNumberOfPoints() > 0:
+        # Arrows and tubes sized on the grains, not on the scene: a scene's bounds grow with
+        # every grain that leaves (a silo's last frame spans metres), which made the tubes
+        # wider than the grains. arm: about a grain's radius.
+        network = ExtractBlock(Input=reader, Selectors=['/Root/force_network'])
+        arm = typical_arm(network, time)
         fmax = max(abs(x) for x in contacts.PointData['normal_force'].GetRange()) or 1
         arrows = Glyph(Input=contacts, GlyphType='Arrow', OrientationArray=['POINTS', 'force'],
-                       ScaleArray=['POINTS', 'force'], ScaleFactor=0.015 * size / fmax)
+                       ScaleArray=['POINTS', 'force'], ScaleFactor=(3 * arm if arm > 0 else 0.015 * size) / fmax)
         ColorBy(Show(arrows, view), ('POINTS', 'normal_force'))
         # Each contact's line has its own points (contacts/network); files from before it
         # share a body's point between its lines, which Shrink 1 separates (a no-op on new
         # files), before the lines' force becomes a point value.
-        network = ExtractBlock(Input=reader, Selectors=['/Root/force_network'])
         ends = CellDatatoPointData(Input=Shrink(Input=network, ShrinkFactor=1.0))
         tubes = Tube(Input=ExtractSurface(Input=ends), Scalars=['POINTS', 'normal_force'], VaryRadius='By Scalar',
-                     Radius=0.002 * size, RadiusFactor=5)
+                     Radius=0.2 * arm if arm > 0 else 0.002 * size, RadiusFactor=4)
         tubes_shown = Show(tubes, view)
         ColorBy(tubes_shown, ('POINTS', 'normal_force'))
         tubes_shown.SetScalarBarVisibility(view, True)
