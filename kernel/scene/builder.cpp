@@ -657,6 +657,17 @@ class SceneChecker {
     return -1;
   }
 
+  /// The groups written on contactors whose shape is unknown (or invalid), which have no
+  /// validated parameters: that error is said once, at the shape, not again at every
+  /// interaction naming the group.
+  void insert_groups_of_unknown_shapes(std::set<std::string>& groups) const {
+    if (!top_["bodies"].is_array()) return;
+    for (const auto& b : top_["bodies"])
+      if (b.is_object() && b.contains("contactors") && b["contactors"].is_array())
+        for (const auto& c : b["contactors"])
+          if (c.is_object() && c.contains("group") && c["group"].is_string()) groups.insert(c["group"].get<std::string>());
+  }
+
   void check_interactions() {
     if (!top_["laws"].is_object()) return;
     for (auto it = top_["laws"].begin(); it != top_["laws"].end(); ++it)
@@ -667,6 +678,7 @@ class SceneChecker {
     for (const auto& b : bodies_)
       for (const auto& c : b.contactors)
         if (c.params.has("group")) groups.insert(c.params.string("group"));
+    insert_groups_of_unknown_shapes(groups);
     const json& is = top_["interactions"];
     for (std::size_t i = 0; i < is.size(); ++i) {
       const std::string ptr = "/interactions/" + std::to_string(i);

@@ -101,6 +101,13 @@ TEST(Newcomer, DidYouMeanForEveryUnknownNameIgnoringCase) {
     EXPECT_EQ(r.code, 2) << c.to;
     EXPECT_NE(r.err.find(c.expected), std::string::npos) << "expected: " << c.expected << "\ngot:\n" << r.err;
   }
+  // A group whose only contactors have an unknown shape: one error, at the shape (not a
+  // second "no contactor has group" at each interaction naming it).
+  const std::string disk = R"("shape": "disk")";
+  const Result only = check_text("dym_group", replace(replace(base, disk, R"("shape": "DISK")"), disk, R"("shape": "DISK")"));
+  EXPECT_EQ(only.code, 2);
+  EXPECT_NE(only.err.find("unknown shape 'DISK'; did you mean 'disk'?"), std::string::npos) << only.err;
+  EXPECT_EQ(only.err.find("no contactor has group"), std::string::npos) << only.err;
   // The command line: commands and options.
   const Result command = run_moreau({"rnu", "scene.json"});
   EXPECT_EQ(command.code, 2);
