@@ -31,7 +31,17 @@ void suggest(const CLI::App& app, int argc, char** argv) {
       }
       continue;
     }
-    if (word.rfind('-', 0) == 0) continue;
+    if (word.rfind('-', 0) == 0) {
+      // A short option from another program's habits (`-o`): the long one it stands for,
+      // when exactly one begins with that letter.
+      if (word.size() < 2 || in->get_option_no_throw(word) != nullptr) continue;
+      std::vector<std::string> matches;
+      for (const auto* o : in->get_options())
+        for (const auto& l : o->get_lnames())
+          if (l[0] == word[1]) matches.push_back("--" + l);
+      if (matches.size() == 1) std::cerr << "unknown option " << word << "; did you mean \"" << matches[0] << "\"?\n";
+      continue;
+    }
     // The first word that is not an option names the command (then a subcommand of it).
     std::vector<std::string> names;
     for (const auto* sub : in->get_subcommands({})) names.push_back(sub->get_name());

@@ -115,6 +115,9 @@ TEST(Newcomer, DidYouMeanForEveryUnknownNameIgnoringCase) {
   const Result option = run_moreau({"run", "scene.json", "--Steps", "3"});
   EXPECT_EQ(option.code, 2);
   EXPECT_NE(option.err.find("unknown option --Steps; did you mean \"--steps\"?"), std::string::npos) << option.err;
+  const Result short_option = run_moreau({"run", "scene.json", "-o", "out.h5"});
+  EXPECT_EQ(short_option.code, 2);
+  EXPECT_NE(short_option.err.find("unknown option -o; did you mean \"--out\"?"), std::string::npos) << short_option.err;
 }
 
 TEST(Newcomer, GridBroadPhaseParametersFromTheScene) {
