@@ -147,6 +147,27 @@ void ContactStages::warn_initial_overlaps(const StepContext& c) {
   if (found > shown) warn("... and " + std::to_string(found - shown) + " more overlapping contacts at the start");
 }
 
+/// A swept contact whose end-of-step position asks a faster departure than its law does
+/// (docs/contacts.md, "Fast bodies": with θ < 1 the committed (1−θ)h v⁻ already reaches
+/// the other body, so the body leaves at up to (1−θ)/θ of its approach speed, whatever e).
+/// Said once per run, when it is more than 1 % of the approach speed.
+void ContactStages::warn_swept_rebound(const StepContext& c, const Detected& ct, double approach, double law_shift,
+                                       double shift) {
+  if (swept_rebound_warned_ || law_shift - shift <= 0.01 * std::fabs(approach)) return;
+  swept_rebound_warned_ = true;
+  const auto& names = c.state.names();
+  const int b0 = contactors[ct.contactor[0]].body, b1 = contactors[ct.contactor[1]].body;
+  char line[768];
+  std::snprintf(line, sizeof line,
+                "step %ld: bodies \"%s\" and \"%s\" met within the step at %.3g m/s (swept detection); to end "
+                "the step touching rather than inside or past each other they leave at %.3g m/s at least, where "
+                "the law asks %.3g m/s: with theta = %g the time step is too coarse for this impact (a smaller "
+                "time step, or theta = 1, resolves it; docs/contacts.md, \"Fast bodies\"; said once per run)",
+                c.step + 1, names[std::min(b0, b1)].c_str(), names[std::max(b0, b1)].c_str(), -approach, -shift,
+                std::max(0.0, -law_shift), c.theta);
+  warn(line);
+}
+
 void ContactStages::warm_start(StepContext& c) {
   // This step's contacts become the rows of the `contacts` set. A contact that persists
   // (same key as a row of the previous step) continues that row: its persistent fields
@@ -341,6 +362,11 @@ void ContactStages::solve_with_laws(StepContext& c) {
   long iterations = 0;
   for (int solves = 1;; ++solves) {
     law_step_.to_solver(problem_, r_);
+    if (law_step_.capped() >= 0) {
+      const auto a = static_cast<std::size_t>(law_step_.capped());
+      warn_swept_rebound(c, contacts_[a], u_begin_[static_cast<Eigen::Index>(a * c.state.dimension())],
+                         law_step_.capped_law_shift(), swept_caps_[a]);
+    }
     problem_.error_scale = approaching_contacts_scale(problem_);
     if (exporting) warm_start = r_;
     report_ = solver->solve(problem_, r_, u_);

@@ -91,6 +91,8 @@ class ContactStages {
   };
   const DetectorUse* detector_for(const std::string& a, const std::string& b) const;
   void warn_initial_overlaps(const StepContext& c);
+  void warn_swept_rebound(const StepContext& c, const Detected& ct, double approach, double law_shift, double shift);
+  bool swept_rebound_warned_ = false;
   std::string worst_contact_bodies(const State& st) const;
   bool initial_overlaps_checked_ = false;
 

@@ -127,7 +127,7 @@ void LawStep::to_solver(LocalProblem& P, Eigen::VectorXd& r) {
     cohesion_[i] = t.cohesion;
     any_cohesion_ = any_cohesion_ || t.cohesion != 0;
     if (caps_ && (*caps_)[a] < shift_[i]) {
-      if (capped_ < 0) {
+      if (capped_ < 0 || shift_[i] - (*caps_)[a] > capped_law_shift_ - (*caps_)[static_cast<std::size_t>(capped_)]) {
         capped_ = static_cast<long>(a);
         capped_law_shift_ = shift_[i];
       }

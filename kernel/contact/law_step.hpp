@@ -48,12 +48,12 @@ class LawStep {
   void to_solver(LocalProblem& problem, Eigen::VectorXd& r);
   /// Per step, before to_solver: the largest normal shift each contact may have (+∞: any),
   /// which to_solver takes when the law's is larger (swept contacts, swept_detection.hpp);
-  /// null: none. The first contact where a cap bit, and the law's shift there, are kept.
+  /// null: none. The contact where a cap bit most, and the law's shift there, are kept.
   void cap_normal_shift(const std::vector<double>* caps) {
     caps_ = caps;
     capped_ = -1;
   }
-  /// The first contact whose law's normal shift was capped this step (−1: none), its law's shift.
+  /// The contact whose law's normal shift was capped most this step (−1: none), its law's shift.
   long capped() const { return capped_; }
   double capped_law_shift() const { return capped_law_shift_; }
   /// After a solve: r', u' kept for the status, r and u made true. `error`: the error

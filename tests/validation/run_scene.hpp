@@ -14,6 +14,7 @@ namespace moreau_test {
 
 struct SceneRun {
   std::string file;
+  std::string err;  ///< what the run printed on stderr
   std::vector<std::string> frames;
   std::vector<double> at(const std::string& frame, const std::string& dataset) const {
     return read_doubles(file, "/frames/" + frame + "/" + dataset);
@@ -27,6 +28,7 @@ inline SceneRun run_scene(const std::string& name, const std::string& scene) {
   EXPECT_EQ(r.code, 0) << r.err;
   SceneRun run;
   run.file = (dir / "out.h5").string();
+  run.err = r.err;
   run.frames = frame_names(run.file);
   return run;
 }
