@@ -9,6 +9,7 @@
 #include <sys/wait.h>
 
 #include <chrono>
+#include <cmath>
 #include <filesystem>
 #include <fstream>
 #include <sstream>
@@ -254,4 +255,101 @@ TEST(Newcomer, CtrlCLeavesACompleteOutputAndSaysHowToContinue) {
   const Result more = run_moreau({"run", scene.string(), "--out", path, "--restart", path, "--steps", "10", "--quiet"}, dir);
   EXPECT_EQ(more.code, 0) << more.err;
   EXPECT_GT(frame_names(path).size(), frames.size());
+}
+
+namespace {
+/// A block sliding on a fixed floor (friction acting) and a ball hovering 0.5 mm above it
+/// (inside the 1 mm alert: an open contact), one step; 2D or 3D.
+std::string contact_conventions_scene(int d) {
+  const std::string block = d == 2 ? R"({"shape": "polygon", "vertices": [[-0.05, -0.05], [0.05, -0.05], [0.05, 0.05], [-0.05, 0.05]], "group": "g"})"
+                                   : R"({"shape": "box", "size": [0.1, 0.1, 0.1], "group": "g"})";
+  const std::string ball = std::string(R"({"shape": ")") + (d == 2 ? "disk" : "sphere") + R"(", "radius": 0.05, "group": "g"})";
+  const std::string floor = d == 2 ? R"({"shape": "segment", "length": 4, "thickness": 0.02, "group": "w"})"
+                                   : R"({"shape": "box", "size": [4, 4, 0.02], "group": "w"})";
+  const auto vec = [d](double x, double y) {
+    return "[" + std::to_string(x) + ", " + (d == 2 ? std::to_string(y) : "0, " + std::to_string(y)) + "]";
+  };
+  // Gravity and the floor along the last axis: y in 2D, z in 3D.
+  return R"({"format": "moreau-scene/1", "dimension": )" + std::to_string(d) + R"(,
+  "time": {"step": 0.001, "duration": 0.001}, "gravity": )" + vec(0, -9.81) + R"(,
+  "materials": {"wood": {"density": 700}},
+  "laws": {"rough": {"type": "coulomb", "friction": 0.4}},
+  "interactions": [{"groups": ["g", "w"], "law": "rough"}],
+  "detection": {"alert": 0.001}, "solver": {"type": "nlgs", "tolerance": 1e-12, "max_iterations": 1000},
+  "output": {"file": "out.h5", "every": 1},
+  "bodies": [
+    {"name": "floor", "fixed": true, "position": )" + vec(0, -0.01) + R"(, "contactors": [)" + floor + R"(]},
+    {"name": "block", "material": "wood", "position": )" + vec(0, 0.05) + R"(, "velocity": )" + vec(2, 0) +
+         R"(, "contactors": [)" + block + R"(]},
+    {"name": "ball", "material": "wood", "position": )" + vec(1, 0.0505) + R"(, "contactors": [)" + ball + R"(]}]})";
+}
+}  // namespace
+
+// docs/output.md, "Contacts", read back from a run as a user would: `force` is the force on
+// the first body of `bodies` (normal from the second toward the first, normal_force > 0
+// pressing them apart, friction against the first body's sliding), `force` = the impulse
+// in the documented local frame (2D t = (−n_y, n_x); 3D t = n × a/|n × a|, a the axis least
+// aligned with n, s = n × t) over h, and open contacts are listed with zero impulse and
+// force, status 0 and their gap.
+TEST(Newcomer, ContactOutputFollowsTheDocumentedConventions) {
+  for (int d : {2, 3}) {
+    const fs::path dir = scratch_dir("conventions" + std::to_string(d));
+    const fs::path scene = write_file(dir, "scene.json", contact_conventions_scene(d));
+    const Result r = run_moreau({"run", scene.string(), "--quiet"}, dir);
+    ASSERT_EQ(r.code, 0) << r.err;
+    const std::string file = (dir / "out.h5").string(), frame = "/frames/00000001/contacts/";
+    const auto bodies = read_doubles(file, frame + "bodies"), normal = read_doubles(file, frame + "normal");
+    const auto force = read_doubles(file, frame + "force"), impulse = read_doubles(file, frame + "impulse");
+    const auto normal_force = read_doubles(file, frame + "normal_force"), gap = read_doubles(file, frame + "gap");
+    const auto status = read_doubles(file, frame + "status");
+    const std::size_t nc = gap.size();
+    ASSERT_GE(nc, 2u) << "d = " << d;
+    const double h = 0.001;
+    int sliding = 0, open = 0;
+    for (std::size_t c = 0; c < nc; ++c) {
+      const double* n = &normal[d * c];
+      // The local frame of `impulse`, as docs/output.md states it.
+      double t[3] = {0, 0, 0}, s[3] = {0, 0, 0};
+      if (d == 2) {
+        t[0] = -n[1];
+        t[1] = n[0];
+      } else {
+        double a[3] = {0, 0, 0};
+        const double ax = std::fabs(n[0]), ay = std::fabs(n[1]), az = std::fabs(n[2]);
+        a[ax <= ay && ax <= az ? 0 : ay <= az ? 1 : 2] = 1;
+        const double c0[3] = {n[1] * a[2] - n[2] * a[1], n[2] * a[0] - n[0] * a[2], n[0] * a[1] - n[1] * a[0]};
+        const double len = std::sqrt(c0[0] * c0[0] + c0[1] * c0[1] + c0[2] * c0[2]);
+        for (int k = 0; k < 3; ++k) t[k] = c0[k] / len;
+        s[0] = n[1] * t[2] - n[2] * t[1];
+        s[1] = n[2] * t[0] - n[0] * t[2];
+        s[2] = n[0] * t[1] - n[1] * t[0];
+      }
+      const double* p = &impulse[d * c];
+      double fn = 0;
+      for (int k = 0; k < d; ++k) {
+        const double expected = (p[0] * n[k] + p[1] * t[k] + (d == 3 ? p[2] * s[k] : 0.0)) / h;
+        EXPECT_NEAR(force[d * c + k], expected, 1e-9 * (1 + std::fabs(expected))) << "d " << d << " contact " << c;
+        fn += force[d * c + k] * n[k];
+      }
+      EXPECT_NEAR(normal_force[c], fn, 1e-9 * (1 + std::fabs(fn)));
+      // Which body: the floor is body 0, below the others along the last axis.
+      const int first = static_cast<int>(bodies[2 * c]), second = static_cast<int>(bodies[2 * c + 1]);
+      ASSERT_TRUE(first == 0 || second == 0);
+      const double up = first == 0 ? -1.0 : 1.0;  // the floor is the second body: the normal points up
+      EXPECT_NEAR(n[d - 1], up, 1e-9) << "the normal points from the second body toward the first";
+      if (gap[c] > 1e-4) {  // the ball, 0.5 mm above the floor
+        ++open;
+        EXPECT_EQ(status[c], 0.0);
+        EXPECT_EQ(normal_force[c], 0.0);
+        for (int k = 0; k < d; ++k) EXPECT_EQ(impulse[d * c + k], 0.0);
+      } else {  // the block, sliding in +x: pressed up, braked in −x (the floor gets the opposite)
+        ++sliding;
+        EXPECT_GT(status[c], 0.0);
+        EXPECT_GT(normal_force[c], 0.0);
+        EXPECT_LT(up * force[d * c], 0.0) << "friction on the first body opposes its sliding";
+      }
+    }
+    EXPECT_EQ(open, 1) << "d = " << d;
+    EXPECT_GE(sliding, 1) << "d = " << d;
+  }
 }
