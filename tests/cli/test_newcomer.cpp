@@ -353,3 +353,84 @@ TEST(Newcomer, ContactOutputFollowsTheDocumentedConventions) {
     EXPECT_GE(sliding, 1) << "d = " << d;
   }
 }
+
+// docs/scene.md, "Drivers": a fixed body with a driver moves (its free components stay at
+// rest: no gravity on a fixed body); where two drivers' windows overlap on a component the
+// one listed last wins; a component only one driver names follows it.
+TEST(Newcomer, DriversOnFixedBodiesAndOverlappingDrivers) {
+  const fs::path dir = scratch_dir("drivers");
+  const fs::path scene = write_file(dir, "scene.json", R"({"format": "moreau-scene/1", "dimension": 2,
+  "time": {"step": 0.01, "duration": 0.1}, "gravity": [0, -9.81],
+  "bodies": [
+    {"name": "piston", "fixed": true, "position": [0, 0], "mass": 1, "inertia": 1},
+    {"name": "cart", "position": [0, 0], "mass": 1, "inertia": 1}],
+  "drivers": [
+    {"body": "piston", "velocity": [0.5, null]},
+    {"body": "cart", "velocity": [1, null], "end": 0.1},
+    {"body": "cart", "velocity": [2, 3], "start": 0.05}],
+  "output": {"file": "out.h5", "every": 1}})");
+  const Result r = run_moreau({"run", scene.string(), "--quiet"}, dir);
+  ASSERT_EQ(r.code, 0) << r.err;
+  const std::string file = (dir / "out.h5").string();
+  for (int step : {2, 5, 10}) {
+    char frame[64];
+    std::snprintf(frame, sizeof frame, "/frames/%08d/", step);
+    const auto v = read_doubles(file, std::string(frame) + "velocity");
+    EXPECT_DOUBLE_EQ(v[0], 0.5) << "the fixed piston moves as driven, step " << step;
+    EXPECT_DOUBLE_EQ(v[1], 0.0) << "its free component stays at rest, step " << step;
+    // The cart: the second driver alone up to t⁺ < 0.05 (x imposed, y under gravity), then
+    // both, the last listed winning on x and alone on y.
+    const double t = step * 0.01;
+    if (t < 0.05 - 1e-12) {
+      EXPECT_DOUBLE_EQ(v[2], 1.0) << "step " << step;
+      EXPECT_NEAR(v[3], -9.81 * t, 1e-12) << "y is free: gravity, step " << step;
+    } else {
+      EXPECT_DOUBLE_EQ(v[2], 2.0) << "the driver listed last wins, step " << step;
+      EXPECT_DOUBLE_EQ(v[3], 3.0) << "step " << step;
+    }
+  }
+}
+
+// docs/scene.md: a segment's core lies along the x axis of its frame and turns with the
+// body's angle (a disk over x = 0.45 lands on a floor of length 1; over x = 0.6 it falls
+// past; the same floor turned by π/2 is a wall that the first disk misses). And where
+// relative paths resolve: `output.file` in the working folder, a hook's file beside the
+// output (`--out` moves it along).
+TEST(Newcomer, SegmentAxisAndRelativePaths) {
+  const auto scene = [](double angle) {
+    return R"({"format": "moreau-scene/1", "dimension": 2, "time": {"step": 0.001, "duration": 0.3},
+  "gravity": [0, -9.81], "laws": {"l": {"type": "coulomb"}}, "interactions": [{"groups": ["g", "w"], "law": "l"}],
+  "bodies": [
+    {"name": "floor", "fixed": true, "position": [0, 0], "angle": )" + std::to_string(angle) + R"(,
+     "contactors": [{"shape": "segment", "length": 1, "thickness": 0.02, "group": "w"}]},
+    {"name": "on", "position": [0.45, 0.1], "mass": 1, "inertia": 1, "contactors": [{"shape": "disk", "radius": 0.02, "group": "g"}]},
+    {"name": "off", "position": [0.6, 0.1], "mass": 1, "inertia": 1, "contactors": [{"shape": "disk", "radius": 0.02, "group": "g"}]}],
+  "hooks": [{"type": "energy_log", "file": "energy.csv", "every": 100}],
+  "output": {"file": "flat.h5", "every": 100}})";
+  };
+  const fs::path dir = scratch_dir("segment_axis");
+  fs::create_directories(dir / "scenes");
+  fs::create_directories(dir / "work");
+  const fs::path flat = write_file(dir / "scenes", "flat.json", scene(0));
+  // Run from work/: output.file lands there, and the hook's file beside it.
+  Result r = run_moreau({"run", flat.string(), "--quiet"}, dir / "work");
+  ASSERT_EQ(r.code, 0) << r.err;
+  EXPECT_TRUE(fs::exists(dir / "work" / "flat.h5")) << "output.file resolves in the working folder";
+  EXPECT_TRUE(fs::exists(dir / "work" / "energy.csv")) << "a hook's file resolves beside the output";
+  EXPECT_FALSE(fs::exists(dir / "scenes" / "flat.h5"));
+  auto x = read_doubles((dir / "work" / "flat.h5").string(), "/frames/00000300/position");
+  EXPECT_NEAR(x[3], 0.01 + 0.02, 1e-4) << "the disk over x = 0.45 rests on the floor (length 1 along x)";
+  EXPECT_LT(x[5], -0.2) << "the disk over x = 0.6 falls past the end";
+  // --out moves the output and the hook's file along.
+  fs::create_directories(dir / "elsewhere");
+  r = run_moreau({"run", flat.string(), "--out", (dir / "elsewhere" / "moved.h5").string(), "--quiet"}, dir / "work");
+  ASSERT_EQ(r.code, 0) << r.err;
+  EXPECT_TRUE(fs::exists(dir / "elsewhere" / "energy.csv"));
+  // Turned by π/2 the segment is a wall along y through the origin: both disks fall.
+  const fs::path wall = write_file(dir / "scenes", "wall.json", scene(1.5707963267948966));
+  r = run_moreau({"run", wall.string(), "--out", "wall.h5", "--quiet"}, dir / "work");
+  ASSERT_EQ(r.code, 0) << r.err;
+  x = read_doubles((dir / "work" / "wall.h5").string(), "/frames/00000300/position");
+  EXPECT_LT(x[3], -0.2);
+  EXPECT_LT(x[5], -0.2);
+}
