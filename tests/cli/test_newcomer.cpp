@@ -1,6 +1,8 @@
 // What a new user runs into first (issue 11, point 5): suggestions for every mistyped name,
-// `--version`, grid parameters from the scene, a word when nothing can collide, Ctrl-C,
-// and the force network drawn through contact points.
+// `--version`, grid parameters from the scene, a word when nothing can collide (or when a
+// law can gain energy), Ctrl-C, the force network drawn through contact points, and what
+// docs/output.md and docs/scene.md state (contact conventions, drivers, the segment's
+// axis, where relative paths resolve), read back from runs.
 #include <gtest/gtest.h>
 
 #include <fcntl.h>
