@@ -80,7 +80,8 @@ class SceneChecker {
       if (sv.is_object() && sv.contains("on_failure")) {
         const json& f = sv["on_failure"];
         if (!f.is_string() || (f != "warn" && f != "stop"))
-          errors_.emplace_back("/solver/on_failure", "expected \"warn\" or \"stop\"");
+          errors_.emplace_back("/solver/on_failure", "expected \"warn\" or \"stop\"" +
+                                                         (f.is_string() ? did_you_mean(f.get<std::string>(), {"warn", "stop"}) : ""));
         else stop_on_failure_ = f == "stop";
       }
     }

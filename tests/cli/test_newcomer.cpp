@@ -87,6 +87,8 @@ TEST(Newcomer, DidYouMeanForEveryUnknownNameIgnoringCase) {
       {R"("name": "floor", "fixed")", R"("name": "floor", "model": "Rigid", "fixed")",
        "unknown modelization 'Rigid'; did you mean 'rigid'?"},
       {R"("gravity")", R"("Gravity")", "unknown key \"Gravity\"; did you mean \"gravity\"?"},
+      {R"("alert": 0.001})", R"("alert": 0.001}, "solver": {"type": "nlgs", "on_failure": "Stop"})",
+       "at /solver/on_failure: expected \"warn\" or \"stop\"; did you mean \"stop\"?"},
       {R"("alert": 0.001)", R"("Alert": 0.001)", "unknown key \"Alert\"; did you mean \"alert\"?"},
       {R"("material": "rock", "position": [0.3, 0.3])", R"("material": "Rock", "position": [0.3, 0.3])",
        "unknown material \"Rock\"; did you mean \"rock\"?"},
