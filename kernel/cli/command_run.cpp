@@ -47,8 +47,14 @@ int command_run(const RunArgs& args, std::ostream& out, std::ostream& err) {
     if (args.steps) opt.steps = *args.steps;
     ProblemExport* exporter = world->contacts ? world->contacts->exporter.get() : nullptr;
     if (exporter) exporter->prepare();  // before the output: an unusable folder is bad input
-    std::unique_ptr<FrameSink> sink = copy_first ? open_output_from(*world, path, *args.restart, opt.first_step)
-                                                 : open_output(*world, path, continue_after);
+    std::unique_ptr<FrameSink> sink;
+    if (copy_first) {
+      bool copied = false;
+      sink = open_output_from(*world, path, *args.restart, opt.first_step, copied);
+      opt.write_first_frame = !copied;  // a file of an earlier format: written from the state
+    } else {
+      sink = open_output(*world, path, continue_after);
+    }
     opt.sink = sink.get();
     if (!args.quiet) {
       opt.progress = &err;
