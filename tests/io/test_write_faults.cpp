@@ -8,10 +8,12 @@
 #include <signal.h>
 #include <spawn.h>
 #include <sys/mount.h>
+#include <sys/resource.h>
 #include <sys/wait.h>
 #include <unistd.h>
 
 #include <chrono>
+#include <csignal>
 #include <cstdlib>
 #include <filesystem>
 #include <fstream>
@@ -20,6 +22,8 @@
 
 #include "cli_runner.hpp"
 #include "h5_read.hpp"
+#include "kernel/io/h5.hpp"
+#include <moreau/error.hpp>
 
 extern char** environ;
 namespace fs = std::filesystem;
@@ -142,6 +146,49 @@ TEST(WriteFaults, AFullDiskEndsTheRunCleanly) {
     SCOPED_TRACE(std::string("tmpfs of ") + size);
     expect_clean_failure(r, mnt, out, "No space left on device");
   }
+}
+
+TEST(WriteFaults, AFailedCloseOfAnHdf5FileCrashesNothingAfter) {
+  // HDF5 1.10 writes cached data and metadata when a file is closed; when that fails,
+  // H5Fclose fails and leaves a half-closed file behind, on which the library's exit
+  // cleanup crashed (SIGSEGV after "cannot finish writing"). In a child process: a file
+  // whose close must fail (a chunk cache to flush past a file-size limit), then more HDF5
+  // work, then a normal exit.
+  const fs::path dir = scratch_dir("failed_close");
+  const std::string path = (dir / "big.h5").string();
+  const pid_t child = fork();
+  ASSERT_GE(child, 0);
+  if (child == 0) {
+    signal(SIGXFSZ, SIG_IGN);
+    struct rlimit limit{64 * 1024, 64 * 1024};
+    setrlimit(RLIMIT_FSIZE, &limit);
+    namespace h5 = moreau::io::h5;
+    h5::Id f = h5::create_on_disk(path);
+    const hsize_t n = 100000, chunk = 1000;
+    h5::Id space = h5::space(H5Screate_simple(1, &n, nullptr));
+    h5::Id dcpl = h5::plist(H5Pcreate(H5P_DATASET_CREATE));
+    H5Pset_chunk(dcpl.get(), 1, &chunk);
+    std::vector<double> values(n, 1.0);
+    {
+      h5::Id d = h5::dataset(H5Dcreate2(f.get(), "x", H5T_IEEE_F64LE, space.get(), H5P_DEFAULT, dcpl.get(), H5P_DEFAULT));
+      H5Dwrite(d.get(), H5T_NATIVE_DOUBLE, H5S_ALL, H5S_ALL, H5P_DEFAULT, values.data());
+    }
+    int failed = 0;
+    try {
+      h5::close_on_disk(f, path);
+    } catch (const moreau::RunError& e) {
+      failed = std::string(e.what()).find("File too large") != std::string::npos ? 1 : 2;
+    }
+    h5::MemoryFile other((dir / "after.h5").string());  // the library still works
+    h5::write_doubles(other.get(), "y", values.data(), 10, 0);
+    other.save((dir / "after.h5").string());
+    std::exit(failed == 1 ? 0 : 10 + failed);
+  }
+  int status = 0;
+  waitpid(child, &status, 0);
+  ASSERT_TRUE(WIFEXITED(status)) << "the child was killed by signal " << WTERMSIG(status);
+  EXPECT_EQ(WEXITSTATUS(status), 0) << "11: the close did not fail; 12: it failed without the OS's reason";
+  EXPECT_EQ(read_doubles((dir / "after.h5").string(), "/y").size(), 10u);
 }
 
 TEST(WriteFaults, ASecondRunWritingTheSameFileIsRefused) {
