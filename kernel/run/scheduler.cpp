@@ -96,9 +96,11 @@ std::string Scheduler::stage_owner(Stage s) const {
   // moreau error (moreau errors keep their own text).
   const std::string stage = "stage " + std::string(stage_name(s));
   switch (s) {
-    case Stage::bulk: return w_.model.label() + " (" + stage + ")";
+    case Stage::bulk:
+      return (w_.models.size() == 1 ? w_.models[0].modelization.label() : "a modelization plugin") + " (" + stage + ")";
     case Stage::free_velocity:
-    case Stage::update_dofs: return w_.integrator.label() + " (" + stage + ")";
+    case Stage::update_dofs:
+      return (w_.models.size() == 1 ? w_.models[0].integrator.label() : "an integrator plugin") + " (" + stage + ")";
     case Stage::broad_phase: return w_.contacts->broadphase.label() + " (" + stage + ")";
     case Stage::solve: return w_.contacts->solver.label() + " (" + stage + ")";
     case Stage::external_forces: return "a force plugin (" + stage + ")";
