@@ -45,11 +45,13 @@ extern "C" int LLVMFuzzerTestOneInput(const std::uint8_t* data, std::size_t size
   if (!moreau_fuzz::write_records(data + 1, size - 1, path)) finding("cannot write the input file");
   try {
     const long step = moreau::kernel::load_restart(w, path, std::nullopt);
-    for (const auto& f : w.state.fields()) {
-      if (!f.spec().restart) continue;
-      for (std::size_t i = 0; i < f.bodies() * static_cast<std::size_t>(f.components()); ++i)
-        if (!std::isfinite(f.data(moreau::Depth::begin)[i])) finding("a restart left field '" + f.name() + "' non-finite");
-    }
+    for (const auto& set : w.state.sets())
+      for (const auto& f : set.fields()) {
+        if (!f.spec().restart) continue;
+        for (std::size_t i = 0; i < f.rows() * static_cast<std::size_t>(f.components()); ++i)
+          if (!std::isfinite(f.data(moreau::Depth::begin)[i]))
+            finding("a restart left field '" + set.name() + "/" + f.name() + "' non-finite");
+      }
     auto sink = moreau::kernel::open_output(w, path, step);
     sink->close();
   } catch (const moreau::InputError& e) {
