@@ -79,7 +79,7 @@ void write_object(Reader& in, hid_t file, int kind, const std::string& path, con
   std::vector<std::uint8_t> raw;
   if (strings) {
     text.resize(count);
-    for (auto& s : text) s = in.str(in.u16() % 4096);
+    for (auto& s : text) s = in.str(in.u16());  // up to 64 KiB: a scene text is longer than 4 KiB
   } else {
     raw.resize(count * value_size(type));
     in.bytes(raw.data(), raw.size());
