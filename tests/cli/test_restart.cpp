@@ -172,7 +172,9 @@ TEST(Restart, ADamagedFileIsRefusedAtTheStartNamingTheDataset) {
   ASSERT_EQ(run_moreau({"run", scene.string(), "--out", "part.h5", "--steps", "150", "--quiet"}, dir).code, 0);
   const std::string part = (dir / "part.h5").string(), frame = "/frames/00000150";
   const auto keys = read_doubles(part, frame + "/contacts/key");
-  const auto q = read_doubles(part, frame + "/orientation");
+  // The nodes' fields are read from the set's group (/frames/N/orientation is a link to it).
+  const std::string nodes = frame + "/rigid.nodes";
+  const auto q = read_doubles(part, nodes + "/orientation");
   struct Case {
     const char* name;
     std::string dataset;
@@ -190,10 +192,10 @@ TEST(Restart, ADamagedFileIsRefusedAtTheStartNamingTheDataset) {
       {"key_other", frame + "/contacts/key", with(keys, 1, 999), nc, "names contactor 999; the scene has 4"},
       {"key_frac", frame + "/contacts/key", with(keys, 2, 0.5), nc, "is not a contact identity"},
       {"impulse", frame + "/contacts/impulse", with(read_doubles(part, frame + "/contacts/impulse"), 4, std::nan("")), nc,
-       "entry 4 is not finite"},
-      {"q_nan", frame + "/orientation", with(q, 5, std::nan("")), 4, "is not finite"},
-      {"q_norm", frame + "/orientation", with(q, 4, 2.0), 4, "is not a unit quaternion"},
-      {"shape", frame + "/position", {0, 0, 0}, 1, "expected 12 values, found 3"},
+       "row 1 is not finite"},
+      {"q_nan", nodes + "/orientation", with(q, 5, std::nan("")), 4, "row 1 is not finite"},
+      {"q_norm", nodes + "/orientation", with(q, 4, 2.0), 4, "row 1 is not a unit quaternion"},
+      {"shape", nodes + "/position", {0, 0, 0}, 1, "expected 12 values (4 rows of 3), found 3"},
   };
   for (const auto& c : cases) {
     const std::string copy = (dir / (std::string(c.name) + ".h5")).string();
