@@ -15,20 +15,26 @@ void ContactAssembly::build(const State& st, const std::vector<ContactModel>& mo
   contacts_ = &cs;
   const int d = dim_;
   const std::size_t nc = cs.size(), nb = st.bodies();
-  // H, side by side, from each body's modelization.
+  // H, side by side, from each body's modelization: a d × k block per support node.
   offset_.resize(2 * nc + 1);
   offset_[0] = 0;
-  for (std::size_t s = 0; s < 2 * nc; ++s) offset_[s + 1] = offset_[s] + static_cast<std::size_t>(d * models[cs.model[s]].k);
+  for (std::size_t s = 0; s < 2 * nc; ++s)
+    offset_[s + 1] = offset_[s] + static_cast<std::size_t>(cs.support_count(s) * d * models[cs.model[s]].k);
   H_.assign(offset_[2 * nc], 0.0);
-  const double one = 1.0;
+  std::size_t nodes[4];
+  double weights[4];
   for (std::size_t a = 0; a < nc; ++a)
     for (int side = 0; side < 2; ++side) {
       const std::size_t s = 2 * a + side;
       PointOnBody p;
       p.body = static_cast<std::size_t>(cs.body[s]);
-      p.nodes = &cs.node[s];
-      p.weights = &one;
-      p.count = 1;
+      p.count = cs.support_count(s);
+      for (int j = 0; j < p.count; ++j) {
+        nodes[j] = cs.support_node(s, j);
+        weights[j] = cs.support_weight(s, j);
+      }
+      p.nodes = nodes;
+      p.weights = weights;
       for (int k = 0; k < 3; ++k) p.point[k] = cs.point[3 * a + k];
       p.frame = &cs.frame[a * d * d];
       double* H = &H_[offset_[s]];
@@ -49,7 +55,7 @@ void ContactAssembly::build(const State& st, const std::vector<ContactModel>& mo
     compact_[b] = static_cast<long>(inverse_.size());
     inverse_.resize(inverse_.size() + static_cast<std::size_t>(m.k * m.k));
     compact_ok_[b] = m.integrator->compact_inverse(st, static_cast<std::size_t>(b), &inverse_[compact_[b]]);
-    uniform = uniform && compact_ok_[b] && (k_all < 0 || k_all == m.k);
+    uniform = uniform && compact_ok_[b] && (k_all < 0 || k_all == m.k) && cs.support_count(s) == 1;
     k_all = m.k;
   }
   problem.dim = d;
@@ -130,20 +136,28 @@ void ContactAssembly::general_w(const State& st, LocalProblem& problem) const {
       }
       continue;
     }
-    // A body whose LHS couples its nodes: G = LHS⁻¹ H_bᵀ by its integrator (one column
-    // per contact row on the body), then W_b = H_b G, dense among its contact rows.
-    const BodyRows rows = st.body(b);
-    const std::size_t n = rows.nodes * static_cast<std::size_t>(k), cols = ns * d;
-    Eigen::MatrixXd Ht = Eigen::MatrixXd::Zero(static_cast<Eigen::Index>(n), static_cast<Eigen::Index>(cols));
+    // A body whose LHS couples its nodes: its integrator gives G, the blocks of LHS⁻¹
+    // among the m nodes its contact points sit on; then W_b = H_b G H_bᵀ, dense among its
+    // contact rows (H_b: the sides' blocks placed on those m nodes).
+    std::vector<std::size_t> nodes;
+    for (const std::size_t s : sides)
+      for (int j = 0; j < cs.support_count(s); ++j) nodes.push_back(cs.support_node(s, j));
+    std::sort(nodes.begin(), nodes.end());
+    nodes.erase(std::unique(nodes.begin(), nodes.end()), nodes.end());
+    const Eigen::Index mk = static_cast<Eigen::Index>(nodes.size()) * k, rows = static_cast<Eigen::Index>(ns) * d;
+    Eigen::MatrixXd G(mk, mk);
+    m.integrator->inverse_blocks(st, b, nodes.data(), static_cast<int>(nodes.size()), G.data());
+    Eigen::MatrixXd Hb = Eigen::MatrixXd::Zero(rows, mk);
     for (std::size_t i = 0; i < ns; ++i) {
       const double* Hi = &H_[offset_[sides[i]]];
-      const std::size_t local = (cs.node[sides[i]] - rows.first_node) * k;
-      for (int r = 0; r < d; ++r)
-        for (int l = 0; l < k; ++l) Ht(static_cast<Eigen::Index>(local + l), static_cast<Eigen::Index>(i * d + r)) = Hi[r * k + l];
+      for (int j = 0; j < cs.support_count(sides[i]); ++j) {
+        const auto col = static_cast<Eigen::Index>(std::lower_bound(nodes.begin(), nodes.end(), cs.support_node(sides[i], j)) -
+                                                   nodes.begin()) * k;
+        for (int r = 0; r < d; ++r)
+          for (int l = 0; l < k; ++l) Hb(static_cast<Eigen::Index>(i) * d + r, col + l) += Hi[(j * d + r) * k + l];
+      }
     }
-    Eigen::MatrixXd G(Ht.rows(), Ht.cols());
-    m.integrator->apply_inverse(st, b, static_cast<int>(cols), Ht.data(), G.data());
-    const Eigen::MatrixXd Wb = Ht.transpose() * G;
+    const Eigen::MatrixXd Wb = Hb * G * Hb.transpose();
     for (std::size_t i = 0; i < ns; ++i)
       for (std::size_t j = 0; j < ns; ++j) {
         Block blk{sides[i] / 2, sides[j] / 2, {}};
@@ -184,12 +198,14 @@ Eigen::VectorXd ContactAssembly::local_velocity(const State& st, Velocity which)
       const std::size_t s = 2 * a + side;
       const ContactModel& m = (*models_)[cs.model[s]];
       const int k = m.k;
-      m.model->generalised_velocity(st, which, cs.node[s], v);
-      const double* H = &H_[offset_[s]];
-      for (int i = 0; i < d; ++i) {
-        double sum = 0;
-        for (int l = 0; l < k; ++l) sum += H[i * k + l] * v[l];
-        u[static_cast<Eigen::Index>(a * d + i)] += sum;
+      for (int j = 0; j < cs.support_count(s); ++j) {
+        m.model->generalised_velocity(st, which, cs.support_node(s, j), v);
+        const double* H = &H_[offset_[s] + static_cast<std::size_t>(j * d * k)];
+        for (int i = 0; i < d; ++i) {
+          double sum = 0;
+          for (int l = 0; l < k; ++l) sum += H[i * k + l] * v[l];
+          u[static_cast<Eigen::Index>(a * d + i)] += sum;
+        }
       }
     }
   return u;
@@ -219,14 +235,103 @@ void ContactAssembly::store_reactions(State& st, const Eigen::VectorXd& r) const
     for (int side = 0; side < 2; ++side) {
       const std::size_t s = 2 * a + side;
       const int k = (*models_)[cs.model[s]].k;
-      const double* H = &H_[offset_[s]];
-      double* P = reaction[cs.model[s]] + cs.node[s] * k;
-      for (int l = 0; l < k; ++l) {
-        double sum = 0;
-        for (int i = 0; i < d; ++i) sum += H[i * k + l] * r[static_cast<Eigen::Index>(a * d + i)];
-        P[l] += sum;
+      for (int j = 0; j < cs.support_count(s); ++j) {
+        const double* H = &H_[offset_[s] + static_cast<std::size_t>(j * d * k)];
+        double* P = reaction[cs.model[s]] + cs.support_node(s, j) * k;
+        for (int l = 0; l < k; ++l) {
+          double sum = 0;
+          for (int i = 0; i < d; ++i) sum += H[i * k + l] * r[static_cast<Eigen::Index>(a * d + i)];
+          P[l] += sum;
+        }
       }
     }
+}
+
+fclib::GlobalProblem ContactAssembly::global_problem(const State& st, const Eigen::VectorXd& q, const Eigen::VectorXd& mu) const {
+  const ContactSides& cs = *contacts_;
+  const std::vector<ContactModel>& models = *models_;
+  const int d = dim_;
+  const std::size_t nc = cs.size();
+  // The touched bodies, in body order, and each one's unknowns in the global numbering
+  // (−1: constrained, not an unknown of the problem).
+  std::vector<int> touched;
+  for (std::size_t s = 0; s < 2 * nc; ++s) touched.push_back(cs.body[s]);
+  std::sort(touched.begin(), touched.end());
+  touched.erase(std::unique(touched.begin(), touched.end()), touched.end());
+  std::vector<std::vector<long>> index(st.bodies());
+  std::vector<Eigen::Triplet<double>> m_entries;
+  std::vector<double> v_free;
+  long ndof = 0;
+  std::vector<double> vbuf(64);
+  for (const int b : touched) {
+    const BodyRows rows = st.body(static_cast<std::size_t>(b));
+    const ContactModel& m = models[static_cast<std::size_t>(rows.model)];
+    const int k = m.k;
+    const std::size_t n = rows.nodes * static_cast<std::size_t>(k);
+    std::vector<long>& idx = index[static_cast<std::size_t>(b)];
+    idx.assign(n, -1);
+    std::vector<LhsEntry> entries;
+    std::vector<int> constrained;
+    if (compact_ok_[static_cast<std::size_t>(b)]) {
+      // A compact inverse: invert its block on the components that move.
+      const Eigen::Map<const Eigen::MatrixXd> Mi(&inverse_[static_cast<std::size_t>(compact_[static_cast<std::size_t>(b)])], k, k);
+      std::vector<int> free;
+      for (int i = 0; i < k; ++i)
+        if (Mi.row(i).cwiseAbs().maxCoeff() > 0) free.push_back(i);
+        else constrained.push_back(i);
+      Eigen::MatrixXd sub(free.size(), free.size());
+      for (std::size_t i = 0; i < free.size(); ++i)
+        for (std::size_t j = 0; j < free.size(); ++j) sub(static_cast<Eigen::Index>(i), static_cast<Eigen::Index>(j)) = Mi(free[i], free[j]);
+      const Eigen::MatrixXd M = sub.inverse();
+      for (std::size_t i = 0; i < free.size(); ++i)
+        for (std::size_t j = 0; j < free.size(); ++j)
+          if (M(static_cast<Eigen::Index>(i), static_cast<Eigen::Index>(j)) != 0)
+            entries.push_back(LhsEntry{free[i], free[j], M(static_cast<Eigen::Index>(i), static_cast<Eigen::Index>(j))});
+    } else if (!m.integrator->lhs_entries(st, static_cast<std::size_t>(b), entries, constrained)) {
+      throw RunError("the contact problem cannot be exported in FCLib's global form: the integrator of body \"" +
+                     st.names()[static_cast<std::size_t>(b)] + "\" gives neither a compact inverse nor its LHS");
+    }
+    std::vector<char> is_constrained(n, 0);
+    for (const int c : constrained) is_constrained[static_cast<std::size_t>(c)] = 1;
+    for (std::size_t i = 0; i < n; ++i)
+      if (!is_constrained[i]) idx[i] = ndof++;
+    for (const auto& e : entries)
+      m_entries.emplace_back(idx[static_cast<std::size_t>(e.row)], idx[static_cast<std::size_t>(e.column)], e.value);
+    for (std::size_t node = 0; node < rows.nodes; ++node) {
+      m.model->generalised_velocity(st, Velocity::free, rows.first_node + node, vbuf.data());
+      for (int l = 0; l < k; ++l)
+        if (idx[node * k + static_cast<std::size_t>(l)] >= 0) v_free.push_back(vbuf[static_cast<std::size_t>(l)]);
+    }
+  }
+  fclib::GlobalProblem g;
+  g.dim = d;
+  g.M.resize(ndof, ndof);
+  g.M.setFromTriplets(m_entries.begin(), m_entries.end());
+  const Eigen::Map<const Eigen::VectorXd> vf(v_free.data(), ndof);
+  g.f = g.M * vf;
+  // FCLib's H is n_dof × d·nc: our H transposed, on the problem's unknowns.
+  std::vector<Eigen::Triplet<double>> h_entries;
+  for (std::size_t a = 0; a < nc; ++a)
+    for (int side = 0; side < 2; ++side) {
+      const std::size_t s = 2 * a + side;
+      const int b = cs.body[s];
+      const int k = models[static_cast<std::size_t>(cs.model[s])].k;
+      const std::size_t first = st.body(static_cast<std::size_t>(b)).first_node;
+      for (int j = 0; j < cs.support_count(s); ++j) {
+        const double* H = &H_[offset_[s] + static_cast<std::size_t>(j * d * k)];
+        const std::size_t node = cs.support_node(s, j) - first;
+        for (int i = 0; i < d; ++i)
+          for (int l = 0; l < k; ++l) {
+            const long col = index[static_cast<std::size_t>(b)][node * k + static_cast<std::size_t>(l)];
+            if (col >= 0 && H[i * k + l] != 0) h_entries.emplace_back(col, static_cast<long>(a * d) + i, H[i * k + l]);
+          }
+      }
+    }
+  g.H.resize(ndof, static_cast<Eigen::Index>(nc * d));
+  g.H.setFromTriplets(h_entries.begin(), h_entries.end());
+  g.w = q - g.H.transpose() * vf;
+  g.mu = mu;
+  return g;
 }
 
 }  // namespace moreau::kernel

@@ -2,11 +2,13 @@
 // The local contact problem u = W r + q built from the modelizations' pieces (DESIGN §5,
 // docs/architecture.md), never knowing what kind of body is behind a contact:
 //  - H: for each contact side, the body's modelization gives the rows of H over the
-//    unknowns of the nodes that support the point (Modelization::contact_jacobian);
+//    unknowns of the nodes that support the point (Modelization::contact_jacobian): one
+//    node, or a mesh facet's nodes with their interpolation weights;
 //  - LHS⁻¹: the body's integrator applies it (Integrator::apply_inverse), or gives it as one
 //    k × k block (compact_inverse: rigid bodies);
 //  - W = H LHS⁻¹ Hᵀ, summed body by body: contacts on one deformable body are coupled
-//    through its LHS⁻¹ (a dense block among its contact rows);
+//    through its LHS⁻¹ (a dense block among its contact rows), which its integrator gives
+//    as the blocks of LHS⁻¹ among the nodes the contacts sit on (inverse_blocks);
 //  - q = H v_free, and back from the solver: the generalised impulses Hᵀ r, added into each
 //    modelization's node field `reaction`.
 // When every moving body of the problem gives a compact inverse of one size k (rigid-only
@@ -22,6 +24,8 @@
 #include <moreau/modelization.hpp>
 #include <vector>
 
+#include "../fclib/fclib.hpp"
+
 namespace moreau::kernel {
 
 /// A modelization of the scene with its integrator, as the contact side uses them.
@@ -32,18 +36,30 @@ struct ContactModel {
   int k = 0;          ///< unknowns per node
 };
 
-/// The contacts of a step as the contact side hands them over: two sides each.
+/// The contacts of a step as the contact side hands them over: two sides each. A side's
+/// point sits on one node (`node`), or on several with interpolation weights (a mesh
+/// facet: `count`, `nodes`, `weights`, filled only when some side has several; empty
+/// `count` means one node of weight 1 for every side).
 struct ContactSides {
   std::vector<int> body;          ///< nc × 2, scene bodies
   std::vector<int> model;         ///< nc × 2, indices into the models
-  std::vector<std::size_t> node;  ///< nc × 2, the node supporting the point (row of its model's node set)
+  std::vector<std::size_t> node;  ///< nc × 2, the (first) node supporting the point (row of its model's node set)
+  std::vector<int> count;         ///< nc × 2 or empty: support nodes of each side (1 to 4)
+  std::vector<std::size_t> nodes; ///< nc × 2 × 4: the support nodes
+  std::vector<double> weights;    ///< nc × 2 × 4: their weights (summing to 1)
   std::vector<double> point;      ///< nc × 3, world, detection configuration
   std::vector<double> frame;      ///< nc × d × d, rows n, t[, s]
   std::size_t size() const { return body.size() / 2; }
+  int support_count(std::size_t side) const { return count.empty() ? 1 : count[side]; }
+  std::size_t support_node(std::size_t side, int j) const { return count.empty() ? node[side] : nodes[4 * side + j]; }
+  double support_weight(std::size_t side, int j) const { return count.empty() ? 1.0 : weights[4 * side + j]; }
   void clear() {
     body.clear();
     model.clear();
     node.clear();
+    count.clear();
+    nodes.clear();
+    weights.clear();
     point.clear();
     frame.clear();
   }
@@ -66,14 +82,21 @@ class ContactAssembly {
   void take_back(LocalProblem& problem);
   /// Zeroes every model's node field `reaction` and adds Hᵀ r into it.
   void store_reactions(State& state, const Eigen::VectorXd& r) const;
+  /// The last problem in FCLib's global form, M v = H r + f, u = Hᵀ v + w (DESIGN §3.5),
+  /// over the free unknowns of the moving bodies its contacts touch, in body order: M
+  /// block-diagonal (a body's LHS: its integrator's lhs_entries, or the inverse of its
+  /// compact inverse on its free components), f = M v_free, w = q − Hᵀ v_free, so that
+  /// reducing it gives back W and q. `q` and `mu` are the local problem's. An integrator
+  /// that can give neither form is an error (RunError naming it).
+  fclib::GlobalProblem global_problem(const State& state, const Eigen::VectorXd& q, const Eigen::VectorXd& mu) const;
 
  private:
   void general_w(const State& state, LocalProblem& problem) const;
   int dim_ = 3;
   const std::vector<ContactModel>* models_ = nullptr;
   const ContactSides* contacts_ = nullptr;
-  std::vector<std::size_t> offset_;  ///< per side (2·nc + 1): where its H block starts in H_
-  std::vector<double> H_;            ///< per contact, per side: d × k of its model (side 1 negated)
+  std::vector<std::size_t> offset_;  ///< per side (2·nc + 1): where its H blocks start in H_
+  std::vector<double> H_;            ///< per contact, per side, per support node: d × k of its model (side 1 negated)
   bool factored_ = false;
   /// Per touched body: −1 not touched, else an index into inverse_ (k² values each).
   std::vector<long> compact_;

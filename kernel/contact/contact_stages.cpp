@@ -4,6 +4,7 @@
 #include <cmath>
 #include <limits>
 #include <cstdio>
+#include <tuple>
 #include <moreau/contact_error.hpp>
 #include <moreau/error.hpp>
 #include <moreau/contact_fields.hpp>
@@ -60,11 +61,28 @@ void ContactStages::detection_configuration(StepContext& c) {
   contactor_poses_.resize(7 * n);
   contactor_sweep_.resize(n);
   const int nr = d == 2 ? 1 : 4;
+  facet_index_.assign(n, -1);
+  facet_points_.clear();
   for (std::size_t i = 0; i < n; ++i) {
     const Contactor& ct = contactors[i];
     const NodeFields& f = nf[ct.model];
     double node[7] = {0, 0, 0, 1, 0, 0, 0};
     if (d == 2) node[3] = 0;
+    if (ct.count > 1) {
+      // A mesh facet: placed by its nodes (Pose::nodes); it may travel as far as its
+      // farthest-moving node.
+      facet_index_[i] = static_cast<long>(facet_points_.size());
+      facet_points_.resize(facet_points_.size() + 12, 0.0);
+      double* points = &facet_points_[static_cast<std::size_t>(facet_index_[i])];
+      contactor_sweep_[i] = 0;
+      for (int j = 0; j < ct.count; ++j) {
+        for (int k = 0; k < d; ++k) points[3 * j + k] = f.x[d * ct.nodes[j] + k];
+        if (f.travel) contactor_sweep_[i] = std::max(contactor_sweep_[i], f.travel[2 * ct.nodes[j]]);
+      }
+      for (int k = 0; k < d; ++k) node[k] = points[k];
+      std::copy(node, node + 7, &contactor_poses_[7 * i]);
+      continue;
+    }
     for (int k = 0; k < d; ++k) node[k] = f.x[d * ct.node + k];
     if (f.q)
       for (int k = 0; k < nr; ++k) node[3 + k] = f.q[nr * ct.node + k];
@@ -81,8 +99,7 @@ void ContactStages::detection_configuration(StepContext& c) {
   }
   for (std::size_t i = 0; i < n; ++i) {
     const Contactor& ct = contactors[i];
-    Pose p{&contactor_poses_[7 * i], &contactor_poses_[7 * i + 3]};
-    ct.shape->bounds(d, p, &bp_.lo[3 * i], &bp_.hi[3 * i]);
+    ct.shape->bounds(d, pose_of(i), &bp_.lo[3 * i], &bp_.hi[3 * i]);
     for (int k = 0; k < 3; ++k) {  // grow by half the alert distance each, and by the sweep
       bp_.lo[3 * i + k] -= alert / 2 + contactor_sweep_[i];
       bp_.hi[3 * i + k] += alert / 2 + contactor_sweep_[i];
@@ -115,8 +132,8 @@ void ContactStages::narrow_phase(StepContext& c) {
     // Contactor poses (body pose ∘ placement); points come back in world coordinates, and
     // the assembly takes lever arms from the body's centre of mass, its origin.
     if (!swept)
-      use->detector->detect(d, *f.shape, Pose{&contactor_poses_[7 * first], &contactor_poses_[7 * first + 3]}, *s.shape,
-                            Pose{&contactor_poses_[7 * second], &contactor_poses_[7 * second + 3]}, reach, scratch_);
+      use->detector->detect(d, *f.shape, pose_of(static_cast<std::size_t>(first)), *s.shape,
+                            pose_of(static_cast<std::size_t>(second)), reach, scratch_);
     const int law = law_of[f.group * groups + s.group];
     for (std::size_t k = 0; k < scratch_.size(); ++k) {
       const auto& p = scratch_[k];
@@ -124,7 +141,48 @@ void ContactStages::narrow_phase(StepContext& c) {
                                    swept ? start_gaps_[k] : p.gap});
     }
   }
+  if (!facet_points_.empty()) keep_nearest_facets();
   if (!initial_overlaps_checked_) warn_initial_overlaps(c);
+}
+
+Pose ContactStages::pose_of(std::size_t i) const {
+  Pose p{&contactor_poses_[7 * i], &contactor_poses_[7 * i + 3]};
+  if (facet_index_[i] >= 0) {
+    p.nodes = &facet_points_[static_cast<std::size_t>(facet_index_[i])];
+    p.node_count = contactors[i].count;
+  }
+  return p;
+}
+
+void ContactStages::keep_nearest_facets() {
+  // A candidate (a mesh node, a disk, a sphere) near a mesh boundary is found against each
+  // facet close enough; it touches one: of its contacts with the facets of one body, the
+  // one of smallest |gap| stays (ties: the first found), as LMGC90 keeps the nearest
+  // antagonist segment (docs/contacts.md, "Meshes").
+  struct Entry {
+    int candidate, body;
+    double distance;
+    std::size_t index;
+  };
+  std::vector<Entry> entries;
+  for (std::size_t a = 0; a < contacts_.size(); ++a) {
+    const Detected& ct = contacts_[a];
+    const bool f0 = facet_index_[ct.contactor[0]] >= 0, f1 = facet_index_[ct.contactor[1]] >= 0;
+    if (f0 == f1) continue;
+    const int facet = ct.contactor[f0 ? 0 : 1], other = ct.contactor[f0 ? 1 : 0];
+    entries.push_back(Entry{other, contactors[facet].body, std::fabs(ct.point.gap), a});
+  }
+  if (entries.empty()) return;
+  std::sort(entries.begin(), entries.end(), [](const Entry& x, const Entry& y) {
+    return std::tie(x.candidate, x.body, x.distance, x.index) < std::tie(y.candidate, y.body, y.distance, y.index);
+  });
+  std::vector<char> drop(contacts_.size(), 0);
+  for (std::size_t i = 1; i < entries.size(); ++i)
+    if (entries[i].candidate == entries[i - 1].candidate && entries[i].body == entries[i - 1].body) drop[entries[i].index] = 1;
+  std::size_t kept = 0;
+  for (std::size_t a = 0; a < contacts_.size(); ++a)
+    if (!drop[a]) contacts_[kept++] = contacts_[a];
+  contacts_.resize(kept);
 }
 
 void ContactStages::warn_initial_overlaps(const StepContext& c) {
@@ -272,28 +330,7 @@ void ContactStages::solve(StepContext& c) {
     law_step_.no_contacts(c.state);
     return;
   }
-  sides_.clear();
-  sides_.frame.resize(nc * d * d);
-  for (std::size_t a = 0; a < nc; ++a) {
-    const auto& p = contacts_[a].point;
-    for (int side = 0; side < 2; ++side) {
-      const Contactor& ct = contactors[contacts_[a].contactor[side]];
-      sides_.body.push_back(ct.body);
-      sides_.model.push_back(ct.model);
-      sides_.node.push_back(ct.node);
-    }
-    for (int k = 0; k < 3; ++k) sides_.point.push_back(p.point[k]);
-    double* fr = &sides_.frame[a * d * d];
-    if (d == 2) {
-      auto f = local_frame_2d(p.normal);
-      for (int i = 0; i < 2; ++i)
-        for (int j = 0; j < 2; ++j) fr[i * 2 + j] = f[i][j];
-    } else {
-      auto f = local_frame_3d(p.normal);
-      for (int i = 0; i < 3; ++i)
-        for (int j = 0; j < 3; ++j) fr[i * 3 + j] = f[i][j];
-    }
-  }
+  fill_sides(d);
   assembly_.build(st, models, sides_, solver->reads_matrix_with_factor(), problem_);
   q_free_ = assembly_.local_velocity(st, Velocity::free);
   u_begin_ = assembly_.local_velocity(st, Velocity::begin);
@@ -385,7 +422,53 @@ void ContactStages::solve_with_laws(StepContext& c) {
   report_.iterations = iterations;
   law_step_.finish(c.state);
   // The problem as the solver saw it last (the laws' standard form), and its answer.
-  if (exporting) exporter->write(c.step + 1, static_cast<double>(c.step + 1) * c.h, c.h, problem_, warm_start, solved, report_);
+  if (exporting) export_problem(c, warm_start, solved);
+}
+
+void ContactStages::export_problem(const StepContext& c, const Eigen::VectorXd& warm_start, const Eigen::VectorXd& solved) {
+  const long step = c.step + 1;
+  const double t = static_cast<double>(step) * c.h;
+  if (exporter->settings().global) {
+    assembly_.take_back(problem_);  // H, lent to the solver's factor, is the assembly's again
+    const fclib::GlobalProblem g = assembly_.global_problem(c.state, problem_.q, problem_.mu);
+    assembly_.lend(problem_);
+    exporter->write_global(step, t, c.h, g, warm_start, solved, report_);
+  } else
+    exporter->write(step, t, c.h, problem_, warm_start, solved, report_);
+}
+
+void ContactStages::fill_sides(int d) {
+  const std::size_t nc = contacts_.size();
+  sides_.clear();
+  sides_.frame.resize(nc * d * d);
+  const bool facets = !facet_points_.empty();
+  for (std::size_t a = 0; a < nc; ++a) {
+    const auto& p = contacts_[a].point;
+    for (int side = 0; side < 2; ++side) {
+      const Contactor& ct = contactors[contacts_[a].contactor[side]];
+      sides_.body.push_back(ct.body);
+      sides_.model.push_back(ct.model);
+      sides_.node.push_back(ct.node);
+      if (!facets) continue;
+      // Points on mesh facets: the facet's nodes with the detector's weights.
+      sides_.count.push_back(ct.count);
+      for (int j = 0; j < 4; ++j) {
+        sides_.nodes.push_back(ct.count > 1 ? ct.nodes[j] : ct.node);
+        sides_.weights.push_back(ct.count > 1 ? p.weights[side][j] : (j == 0 ? 1.0 : 0.0));
+      }
+    }
+    for (int k = 0; k < 3; ++k) sides_.point.push_back(p.point[k]);
+    double* fr = &sides_.frame[a * d * d];
+    if (d == 2) {
+      auto f = local_frame_2d(p.normal);
+      for (int i = 0; i < 2; ++i)
+        for (int j = 0; j < 2; ++j) fr[i * 2 + j] = f[i][j];
+    } else {
+      auto f = local_frame_3d(p.normal);
+      for (int i = 0; i < 3; ++i)
+        for (int j = 0; j < 3; ++j) fr[i * 3 + j] = f[i][j];
+    }
+  }
 }
 
 void ContactStages::store_reactions(StepContext& c) {

@@ -6,6 +6,7 @@
 // `contacts` set (moreau/contact_fields.hpp), rebuilt at warm_start with what persists
 // carried over by identity; the problem is built from the modelizations' pieces
 // (contact_assembly.hpp), so nothing here knows what kind of body is behind a contact.
+#include <array>
 #include <cstdint>
 #include <memory>
 #include <moreau/broadphase.hpp>
@@ -34,7 +35,9 @@ struct Contactor {
   Owned<Shape> shape;
   Placement placement;  ///< in the frame of its node (rigid: the body frame, origin the centre of mass); identity for most
   int model = -1;       ///< its body's modelization (index into the models)
-  std::size_t node = 0; ///< the node supporting it (row of its modelization's node set)
+  std::size_t node = 0; ///< the node supporting it (row of its modelization's node set); a facet's first
+  int count = 1;        ///< support nodes: 1, or a mesh facet's 2 to 4 (Shape::support() == facet)
+  std::array<std::size_t, 4> nodes{};  ///< a facet's nodes, outward order (rows of the node set)
 };
 
 /// A detector for an ordered pair of shape names; `swap`: the detector's first shape is
@@ -90,6 +93,14 @@ class ContactStages {
     double start_gap = 0;  ///< gap at the start configuration, where known (else the point's gap)
   };
   const DetectorUse* detector_for(const std::string& a, const std::string& b) const;
+  /// Pose of contactor i for its detector (a facet's: its nodes).
+  Pose pose_of(std::size_t i) const;
+  /// Of the contacts between one contactor and the facets of one body, keeps the nearest.
+  void keep_nearest_facets();
+  /// The step's contacts as sides for the assembly (support nodes and weights).
+  void fill_sides(int d);
+  /// Writes the step's problem (export_problems), local or global.
+  void export_problem(const StepContext& c, const Eigen::VectorXd& warm_start, const Eigen::VectorXd& solved);
   void warn_initial_overlaps(const StepContext& c);
   void warn_swept_rebound(const StepContext& c, const Detected& ct, double approach, double law_shift, double shift);
   bool swept_rebound_warned_ = false;
@@ -100,6 +111,9 @@ class ContactStages {
   /// 4: 2D angle in [0]) and distance it may travel in the step (its node's, plus the
   /// rotation of an offset contactor).
   std::vector<double> contactor_poses_, contactor_sweep_;
+  /// Facet contactors: index into facet_points_ (12 values: up to 4 nodes × 3), else −1.
+  std::vector<long> facet_index_;
+  std::vector<double> facet_points_;
   BroadPhaseInput bp_;
   std::vector<std::pair<int, int>> pairs_;
   std::vector<Detected> contacts_;

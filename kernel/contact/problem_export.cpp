@@ -66,17 +66,39 @@ void ProblemExport::write(long step, double time, double h, const LocalProblem& 
   // A solver that failed badly leaves non-finite impulses (the run stops on them just
   // after): the problem is still worth having, its "solution" is not.
   const bool finite = r.allFinite();
-  std::ostringstream d;
-  d.precision(6);
-  d << "moreau " << MOREAU_SDK_VERSION << ": local contact problem of scene " << fs::path(s_.scene_file).filename().string()
-    << ", step " << step << " (t = " << time << " s, h = " << h << " s), " << p.contacts() << " contacts, spacedim " << p.dim
-    << ".\nsolver " << s_.solver << ": " << report.iterations << " iterations, error " << report.error
-    << (report.converged ? ", converged" : ", not converged")
-    << ".\n/guesses/1: the run's warm start (previous impulses of persisting contacts). "
-    << (finite ? "/solution: the run's answer." : "No /solution: the run's answer was not finite.");
-  fclib::ProblemInfo info{s_.stem + " step " + std::to_string(step), d.str(), ""};
+  fclib::ProblemInfo info{s_.stem + " step " + std::to_string(step),
+                          description("local", step, time, h, p.contacts(), p.dim, report, finite), ""};
   fclib::write_local(path_of(step), *problem, info, &warm_start, finite ? &r : nullptr);
   written_.push_back(step);
+}
+
+void ProblemExport::write_global(long step, double time, double h, const fclib::GlobalProblem& g,
+                                 const Eigen::VectorXd& warm_start, const Eigen::VectorXd& r, const SolverReport& report) {
+  if (g.mu.size() < s_.min_contacts) {
+    too_few_.push_back(step);
+    return;
+  }
+  const bool finite = r.allFinite();
+  fclib::ProblemInfo info{s_.stem + " step " + std::to_string(step),
+                          description("global", step, time, h, g.mu.size(), g.dim, report, finite) +
+                              " M: the LHS of the touched bodies on their free unknowns (" + std::to_string(g.M.rows()) +
+                              "), f = M v_free, w = q - H^T v_free.",
+                          ""};
+  fclib::write_global(path_of(step), g, info, &warm_start, finite ? &r : nullptr);
+  written_.push_back(step);
+}
+
+std::string ProblemExport::description(const char* form, long step, double time, double h, Eigen::Index contacts, int dim,
+                                       const SolverReport& report, bool finite) const {
+  std::ostringstream d;
+  d.precision(6);
+  d << "moreau " << MOREAU_SDK_VERSION << ": " << form << " contact problem of scene "
+    << fs::path(s_.scene_file).filename().string() << ", step " << step << " (t = " << time << " s, h = " << h << " s), "
+    << contacts << " contacts, spacedim " << dim << ".\nsolver " << s_.solver << ": " << report.iterations
+    << " iterations, error " << report.error << (report.converged ? ", converged" : ", not converged")
+    << ".\n/guesses/1: the run's warm start (previous impulses of persisting contacts). "
+    << (finite ? "/solution: the run's answer." : "No /solution: the run's answer was not finite.");
+  return d.str();
 }
 
 std::string ProblemExport::summary() const {

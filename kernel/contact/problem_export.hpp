@@ -1,6 +1,6 @@
 #pragma once
-// The scene key `export_problems` (docs/scene.md): the local contact problem of chosen
-// steps written as an FCLib file (DESIGN §3.5), with the warm start the run used as
+// The scene key `export_problems` (docs/scene.md): the contact problem of chosen steps
+// written as an FCLib file (DESIGN §3.5), local (W, q) or global (M, H, f, w), with the warm start the run used as
 // /guesses/1 and the run's own answer as /solution, so moreau's problems join the
 // work-precision benchmark and can be handed to other codes.
 #include <Eigen/Core>
@@ -8,6 +8,8 @@
 #include <moreau/solver.hpp>
 #include <string>
 #include <vector>
+
+#include "../fclib/fclib.hpp"
 
 namespace moreau::kernel {
 
@@ -19,6 +21,7 @@ struct ProblemExportSettings {
   long min_contacts = 1;    ///< steps with fewer contacts write nothing
   std::string scene_file;   ///< for the description inside the files
   std::string solver;       ///< the scene's solver section, as JSON text, for the description
+  bool global = false;      ///< `kind: "global"`: FCLib's global form (M, H, f, w) instead of (W, q)
 };
 
 class ProblemExport {
@@ -35,6 +38,10 @@ class ProblemExport {
   /// the factor, which must still be lent to `p`.
   void write(long step, double time, double h, const LocalProblem& p, const Eigen::VectorXd& warm_start,
              const Eigen::VectorXd& r, const SolverReport& report);
+  /// The same problem in FCLib's global form (settings().global), built by the caller
+  /// (ContactAssembly::global_problem).
+  void write_global(long step, double time, double h, const fclib::GlobalProblem& g, const Eigen::VectorXd& warm_start,
+                    const Eigen::VectorXd& r, const SolverReport& report);
   /// One line for the end of the run: what was written, what was skipped and why.
   std::string summary() const;
 
@@ -42,6 +49,8 @@ class ProblemExport {
   std::string path_of(long step) const;
 
  private:
+  std::string description(const char* form, long step, double time, double h, Eigen::Index contacts, int dim,
+                          const SolverReport& report, bool finite) const;
   ProblemExportSettings s_;
   std::vector<long> written_, too_few_;
 };

@@ -70,8 +70,14 @@ void SweptDetection::begin_step(const std::vector<Contactor>& contactors, const 
     half_width_.resize(n);
     reach_.resize(n);
     radius_.resize(n);
+    on_mesh_.resize(n);
     for (std::size_t i = 0; i < n; ++i) {
       const Contactor& c = contactors[i];
+      on_mesh_[i] = c.count > 1 || st.body(static_cast<std::size_t>(c.body)).nodes > 1;
+      if (on_mesh_[i]) {  // no pose of its own (a facet's bounds need its nodes), never swept
+        half_width_[i] = radius_[i] = reach_[i] = 0;
+        continue;
+      }
       half_width_[i] = c.shape->half_width(dim_);
       const double zero[4] = {0, 0, 0, 0}, identity[4] = {1, 0, 0, 0};
       double lo[3], hi[3];
@@ -141,6 +147,7 @@ double SweptDetection::approach_speed(int i, int j) const {
 }
 
 bool SweptDetection::fast(int i, int j) const {
+  if (on_mesh_[static_cast<std::size_t>(i)] || on_mesh_[static_cast<std::size_t>(j)]) return false;  // header
   if (!nodes_[(*contactors_)[i].model].x || !nodes_[(*contactors_)[j].model].x) return false;
   // Predicted past or deep enough in the other for its normal to flip takes a travel of
   // about the sum of the half widths (a disk's centre reaching a wall's mid-line); half of

@@ -19,6 +19,12 @@
 // (`angle` / `orientation`) at the start of the step, and `velocity`, `angular_velocity`
 // (rigid nodes have them). A modelization whose nodes lack velocities is taken as still
 // over the step, one without `position` never swept.
+//
+// Contactors on meshes (bodies of more than one node: a `point` on a node, an `edge` or
+// `face` on a facet) are never swept: a facet is placed by several nodes, not by one pose
+// advanced along (v, ω), and points and facets have no thickness to stop short of (a
+// quarter of the thinner half width is 0). Their pairs keep the contacts of q_θ, found
+// within the alert distance grown by each node's travel in the step (contactor_sweep_).
 #include <algorithm>
 #include <moreau/detector.hpp>
 #include <moreau/state.hpp>
@@ -73,6 +79,8 @@ class SweptDetection {
   // Per contactor (computed once): half width, radius (of a ball about its own origin that
   // holds it) and reach (largest distance of its shape from its body's origin), m.
   std::vector<double> half_width_, radius_, reach_;
+  /// Per contactor: on a body of more than one node (a mesh), hence never swept.
+  std::vector<char> on_mesh_;
   /// Per modelization, its nodes at the start of the step (Depth::begin): position,
   /// rotation, velocity, angular velocity; null where the set has no such field.
   struct Nodes {

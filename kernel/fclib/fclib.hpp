@@ -62,3 +62,13 @@ void write_local(const std::string& path, const LocalProblem& p, const ProblemIn
                  const Eigen::VectorXd* guess_r, const Eigen::VectorXd* solution_r);
 
 }  // namespace moreau::fclib
+
+namespace moreau::fclib {
+
+/// Writes a whole global problem: /fclib_global (M and H in CSR, vectors f, w and mu,
+/// spacedim, info), then /guesses/1 and /solution as (r, v, u) when given, through a
+/// temporary file as write_local does. `read` reads it back (reducing it to W, q).
+void write_global(const std::string& path, const GlobalProblem& g, const ProblemInfo& info, const Eigen::VectorXd* guess_r,
+                  const Eigen::VectorXd* solution_r);
+
+}  // namespace moreau::fclib

@@ -1,4 +1,4 @@
-// A whole FCLib local problem (DESIGN §3.5), laid out as FCLib's own writer does
+// Whole FCLib problems, local and global (DESIGN §3.5), laid out as FCLib's own writer does
 // (fclib_write_local in fclib.c): int32 one-element m, n, nz, nzmax, spacedim; W in CSR
 // (nz = -2, p the m+1 row pointers, i the column indices); info strings as fixed-length
 // scalars. Siconos and FCLib's tools then read moreau's problems as they read the
@@ -42,7 +42,7 @@ void write_vector(hid_t where, const std::string& name, const Eigen::VectorXd& v
   h5::write_doubles(where, name, v.data(), static_cast<hsize_t>(v.size()), 0);
 }
 
-void write_csr(hid_t where, const Eigen::SparseMatrix<double, Eigen::RowMajor>& W) {
+void write_csr(hid_t where, const Eigen::SparseMatrix<double, Eigen::RowMajor>& W) {  // any matrix, as CSR
   Eigen::SparseMatrix<double, Eigen::RowMajor> A = W;
   A.makeCompressed();
   const auto nnz = static_cast<hsize_t>(A.nonZeros());
@@ -97,7 +97,61 @@ void write_file(const std::string& path, const LocalProblem& p, const ProblemInf
   f.save_atomically(path);
 }
 
+/// FCLib's global form (fclib_write_global): M, H as CSR, vectors f, w, mu; guesses and
+/// solution as (r, v, u) with v = M⁻¹(H r + f), u = Hᵀ v + w.
+void write_global_file(const std::string& path, const GlobalProblem& g, const ProblemInfo& info,
+                       const Eigen::VectorXd* guess_r, const Eigen::VectorXd* solution_r) {
+  h5::MemoryFile f(path);
+  if (!f) throw RunError("cannot create the FCLib problem file " + path + " in memory");
+  h5::Id root = make_group(f.get(), "fclib_global");
+  write_int(root.get(), "spacedim", g.dim);
+  for (const auto& [name, A] : {std::pair<const char*, const Eigen::SparseMatrix<double>*>{"M", &g.M}, {"H", &g.H}}) {
+    h5::Id m = make_group(root.get(), name);
+    write_csr(m.get(), Eigen::SparseMatrix<double, Eigen::RowMajor>(*A));
+  }
+  {
+    h5::Id v = make_group(root.get(), "vectors");
+    write_vector(v.get(), "f", g.f);
+    write_vector(v.get(), "w", g.w);
+    write_vector(v.get(), "mu", g.mu);
+  }
+  {
+    h5::Id i = make_group(root.get(), "info");
+    write_text(i.get(), "title", info.title);
+    write_text(i.get(), "description", info.description);
+    write_text(i.get(), "math_info", info.math_info);
+  }
+  auto triple = [&](hid_t where, const Eigen::VectorXd& r) {
+    const Eigen::VectorXd v = global_velocity(g, r);
+    write_vector(where, "r", r);
+    write_vector(where, "v", v);
+    write_vector(where, "u", Eigen::VectorXd(g.H.transpose() * v + g.w));
+  };
+  if (guess_r) {
+    h5::Id gs = make_group(f.get(), "guesses");
+    write_int(gs.get(), "number_of_guesses", 1);
+    h5::Id one = make_group(gs.get(), "1");
+    triple(one.get(), *guess_r);
+  }
+  if (solution_r) {
+    h5::Id s = make_group(f.get(), "solution");
+    triple(s.get(), *solution_r);
+  }
+  root.reset();
+  f.save_atomically(path);  // as write_file
+}
+
 }  // namespace
+
+void write_global(const std::string& path, const GlobalProblem& g, const ProblemInfo& info, const Eigen::VectorXd* guess_r,
+                  const Eigen::VectorXd* solution_r) {
+  const Eigen::Index n = g.dim * g.mu.size(), ndof = g.M.rows();
+  if (g.M.cols() != ndof || g.H.rows() != ndof || g.H.cols() != n || g.f.size() != ndof || g.w.size() != n)
+    throw RunError("internal: FCLib export of a global problem whose sizes disagree");
+  for (const Eigen::VectorXd* r : {guess_r, solution_r})
+    if (r && r->size() != n) throw RunError("internal: FCLib export of an impulse vector of the wrong size");
+  write_global_file(path, g, info, guess_r, solution_r);
+}
 
 void write_local(const std::string& path, const LocalProblem& p, const ProblemInfo& info, const Eigen::VectorXd* guess_r,
                  const Eigen::VectorXd* solution_r) {

@@ -137,7 +137,8 @@ struct Writer {
         auto attributes = [&](const std::string& group, const std::vector<std::pair<std::string, int>>& fields,
                               std::size_t rows, const char* center) {
           for (const auto& [name, c] : fields) {
-            const char* kind = c == 1 ? "Scalar" : c == d ? "Vector" : c == 4 ? "Matrix" : nullptr;
+            // 6 components: a symmetric tensor (stresses), as 6 named components.
+            const char* kind = c == 1 ? "Scalar" : c == d ? "Vector" : c == 4 || c == 6 ? "Matrix" : nullptr;
             if (!kind || name == node_fields::position) continue;
             attribute(os, name.c_str(), kind, file, fp + "/" + group + "/" + name, rows, c == 1 ? 0 : c, f64, center);
           }

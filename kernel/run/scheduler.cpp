@@ -87,6 +87,9 @@ void Scheduler::build_stages() {
   }
   stages_[static_cast<int>(Stage::update_dofs)] = [this](StepContext& c) {
     for (auto& m : w_.models) m.integrator->update_dofs(c);
+    // Then what each modelization derives from the ⁺ values (stresses, for the output).
+    for (auto& m : w_.models)
+      if (m.modelization->has_derived_fields()) m.modelization->derived_fields(c.state, Depth::end);
   };
   stages_[static_cast<int>(Stage::end_step)] = [](StepContext& c) { c.state.swap_depths(); };
 }
@@ -112,18 +115,24 @@ std::string Scheduler::stage_owner(Stage s) const {
 
 void Scheduler::apply_drivers(StepContext& ctx) {
   // A driver imposes v⁺, the velocity at the end of the step, while start ≤ t⁺ ≤ end, on
-  // its body's node (drivers act on one-node bodies: the builder checked).
+  // its rows (a one-node body's node, or a node group of a mesh: the builder resolved them).
   const double t_end = static_cast<double>(ctx.step + 1) * ctx.h;
-  // Reset the driven bodies first: several drivers may share a body (different windows).
+  auto field = [&](const Driver& d) {
+    return ctx.state.field(ctx.state.model_of(static_cast<std::size_t>(d.body)).nodes, node_fields::imposed_velocity).data();
+  };
+  // Reset the driven rows first: several drivers may share one (different windows).
   for (const auto& d : w_.drivers) {
-    auto v = ctx.state.node_values(static_cast<std::size_t>(d.body), node_fields::imposed_velocity);
-    std::fill(v.begin(), v.end(), std::nan(""));
+    double* v = field(d);
+    const std::size_t k = d.velocity.size();
+    for (const std::size_t r : d.rows) std::fill(v + r * k, v + (r + 1) * k, std::nan(""));
   }
   for (const auto& d : w_.drivers) {
     if (t_end < d.start || t_end > d.end) continue;
-    auto v = ctx.state.node_values(static_cast<std::size_t>(d.body), node_fields::imposed_velocity);
-    for (std::size_t k = 0; k < v.size(); ++k)
-      if (!std::isnan(d.velocity[k])) v[k] = d.velocity[k];
+    double* v = field(d);
+    const std::size_t k = d.velocity.size();
+    for (const std::size_t r : d.rows)
+      for (std::size_t i = 0; i < k; ++i)
+        if (!std::isnan(d.velocity[i])) v[r * k + i] = d.velocity[i];
   }
 }
 
@@ -188,6 +197,9 @@ RunSummary Scheduler::run(const RunOptions& opt) {
   struct Reset {
     ~Reset() { set_active_progress(nullptr); }
   } reset;
+  // Derived fields are not restart fields: the first frame (or a restart's) has them too.
+  for (auto& m : w_.models)
+    if (m.modelization->has_derived_fields()) m.modelization->derived_fields(w_.state, Depth::begin);
   if (opt.write_first_frame) write(opt.first_step);
 
   long step = opt.first_step;

@@ -24,7 +24,11 @@ namespace moreau::kernel {
 /// velocity imposed from `start` to `end`. NaN components are left free.
 struct Driver {
   int body = -1;
-  std::vector<double> velocity;  ///< d linear then 1 (2D) / 3 (3D) angular components, world frame
+  /// Scene: d linear then 1 (2D) / 3 (3D) angular components, world frame. Built: the k
+  /// unknowns of the body's modelization (rigid: the same; a mesh node: d).
+  std::vector<double> velocity;
+  std::string node_group;          ///< scene key `nodes`: a node group of the body ("": its one node)
+  std::vector<std::size_t> rows;   ///< built: the driven rows of its modelization's node set
   double start = 0;
   double end = std::numeric_limits<double>::infinity();
   std::string pointer;  ///< its place in the scene, for messages

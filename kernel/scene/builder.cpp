@@ -134,6 +134,7 @@ class SceneChecker {
     BuildContext ctx;
     ctx.dimension = dim_;
     ctx.time_step = w->h;
+    ctx.theta = w->theta;
     ctx.scene_file = file_.path;
     ctx.scene_dir = fs::absolute(fs::path(file_.path)).parent_path().string();
     ctx.output_dir = fs::absolute(fs::path(output_path.empty() ? w->output.file : output_path)).parent_path().string();
@@ -187,44 +188,58 @@ class SceneChecker {
       std::vector<Owned<Shape>> undetected;      // shapes no detector keeps, alive until then
       for (std::size_t i = 0; i < bodies_.size(); ++i) {
         const auto& b = bodies_[i];
-        std::optional<double> density;
-        if (!b.material.empty()) density = materials_.at(b.material);
+        const Params* material = b.material.empty() ? nullptr : &materials_.at(b.material);
         // Shapes: one object per contactor, at its placement; their mass properties add up
-        // (a cluster: parallel-axis theorem in add()).
+        // (a cluster: parallel-axis theorem in add()). A contactor on a `boundary` is
+        // repeated over a group the modelization records in init_body: it is made after.
         std::optional<MassProperties> mass;
-        const std::size_t first_detected = contactors.size(), first_info = w->contactor_info.size();
         const BodyRows rows = w->state.body(i);
-        for (const auto& c : b.contactors) {
-          json params = c.params.json();
-          for (const auto& k : contactor_keys.params()) params.erase(k.name);
-          const long node = c.params.integer("node");
+        std::vector<Owned<Shape>> on_node(b.contactors.size());
+        for (std::size_t c = 0; c < b.contactors.size(); ++c) {
+          const auto& ct = b.contactors[c];
+          if (ct.params.has("boundary")) continue;
+          const long node = ct.params.has("node") ? ct.params.integer("node") : 0;
           if (static_cast<std::size_t>(node) >= rows.nodes)
-            throw InputError(c.pointer + "/node", "body \"" + b.name + "\" has " + std::to_string(rows.nodes) +
-                                                      " node" + (rows.nodes == 1 ? "" : "s") + ": expected a node below " +
-                                                      std::to_string(rows.nodes));
-          Owned<Shape> shape = reg.create<Shape>(c.name, Params(params, c.pointer), ctx, c.pointer + "/shape");
-          const Placement place_at = placement(c.params);
-          if (shape->has_mass())
-            mass = add(mass, place_at.identity() ? shape->mass_properties() : place(dim_, shape->mass_properties(), place_at));
-          const std::string group = c.params.string("group");
-          w->contactor_info.push_back(io::ContactorInfo{static_cast<int>(i), rows.model, rows.first_node + static_cast<std::size_t>(node),
-                                                        static_cast<int>(node), c.name, group, place_at.offset,
-                                                        dim_ == 2 ? std::array<double, 4>{place_at.angle, 0, 0, 0}
-                                                                  : place_at.orientation});
-          display_shapes.push_back(shape.get());
-          if (group_index.count(group))  // contactors of groups no interaction names are never detected
-            contactors.push_back(Contactor{static_cast<int>(i), group_index.at(group), std::move(shape), place_at, rows.model,
-                                           rows.first_node + static_cast<std::size_t>(node)});
-          else undetected.push_back(std::move(shape));
+            throw InputError(ct.pointer + "/node", "body \"" + b.name + "\" has " + std::to_string(rows.nodes) +
+                                                       " node" + (rows.nodes == 1 ? "" : "s") + ": expected a node below " +
+                                                       std::to_string(rows.nodes));
+          on_node[c] = reg.create<Shape>(ct.name, shape_params(ct, contactor_keys), ctx, ct.pointer + "/shape");
+          if (on_node[c]->support() == Support::facet)
+            throw InputError(ct.pointer + "/shape", "shape \"" + ct.name + "\" is a facet of a mesh: give \"boundary\", "
+                                                    "the boundary group whose facets it stands for");
+          const Placement place_at = placement(ct.params);
+          if (on_node[c]->has_mass())
+            mass = add(mass, place_at.identity() ? on_node[c]->mass_properties() : place(dim_, on_node[c]->mass_properties(), place_at));
         }
         // The modelization may take the cluster's centre of mass as the body origin: the
         // contactors stay where the scene put them, so their offsets are re-expressed.
-        const auto origin = w->models[rows.model].modelization->init_body(w->state, i, b.model.params, mass, density);
-        if (origin[0] != 0 || origin[1] != 0 || origin[2] != 0) {
-          for (std::size_t c = first_detected; c < contactors.size(); ++c)
-            for (int k = 0; k < 3; ++k) contactors[c].placement.offset[k] -= origin[k];
-          for (std::size_t c = first_info; c < w->contactor_info.size(); ++c)
-            for (int k = 0; k < 3; ++k) w->contactor_info[c].offset[k] -= origin[k];
+        const auto origin = w->models[rows.model].modelization->init_body(w->state, i, b.model.params, mass, material);
+        auto emit = [&](Owned<Shape> shape, const PluginUse& ct, Placement place_at, const std::size_t* nodes, int count) {
+          for (int k = 0; k < 3; ++k) place_at.offset[k] -= origin[k];
+          const std::string group = ct.params.string("group");
+          w->contactor_info.push_back(io::ContactorInfo{static_cast<int>(i), rows.model, nodes[0],
+                                                        static_cast<int>(nodes[0] - rows.first_node), ct.name, group,
+                                                        place_at.offset,
+                                                        dim_ == 2 ? std::array<double, 4>{place_at.angle, 0, 0, 0}
+                                                                  : place_at.orientation});
+          display_shapes.push_back(shape.get());
+          if (!group_index.count(group)) {  // contactors of groups no interaction names are never detected
+            undetected.push_back(std::move(shape));
+            return;
+          }
+          Contactor made{static_cast<int>(i), group_index.at(group), std::move(shape), place_at, rows.model, nodes[0]};
+          made.count = count;
+          std::copy(nodes, nodes + count, made.nodes.begin());
+          contactors.push_back(std::move(made));
+        };
+        for (std::size_t c = 0; c < b.contactors.size(); ++c) {
+          const auto& ct = b.contactors[c];
+          if (on_node[c]) {
+            const std::size_t node = rows.first_node + static_cast<std::size_t>(ct.params.has("node") ? ct.params.integer("node") : 0);
+            emit(std::move(on_node[c]), ct, placement(ct.params), &node, 1);
+          } else {
+            emit_boundary(w->state, i, ct, contactor_keys, reg, ctx, emit);
+          }
         }
       }
       if (w->output.shapes) w->display = build_display(w->state, w->contactor_info, display_shapes);
@@ -236,18 +251,7 @@ class SceneChecker {
       set_contactor_reach(dim_, w->contactor_info, display_shapes);
       undetected.clear();
       if (!interactions_.empty()) build_contacts(*w, reg, ctx, std::move(contactors), group_index);
-      for (const auto& d : drivers_) {
-        // A driver imposes a body's generalised velocity: one-node bodies whose modelization
-        // takes imposed velocities (rigid bodies: d linear and 1 or 3 angular components).
-        const BodyRows rows = w->state.body(static_cast<std::size_t>(d.body));
-        const ModelInfo& m = w->state.models()[rows.model];
-        if (rows.nodes != 1 || !w->state.has(m.nodes, node_fields::imposed_velocity) ||
-            static_cast<int>(d.velocity.size()) != m.node_dofs)
-          throw InputError(d.pointer + "/body", "drivers impose the velocity of a rigid body: body \"" +
-                                                    names[static_cast<std::size_t>(d.body)] + "\" is a \"" + m.name +
-                                                    "\" body with " + std::to_string(rows.nodes) + " nodes");
-        w->drivers.push_back(d);
-      }
+      for (const auto& d : drivers_) w->drivers.push_back(built_driver(w->state, d, names));
       // Each modelization's integrator: the scene's `models.<name>.integrator`, else
       // `time.integrator`, else the modelization's own choice.
       for (auto& m : w->models) {
@@ -290,6 +294,46 @@ class SceneChecker {
     std::vector<PluginUse> contactors;
     bool fixed = false;
   };
+
+  /// A contactor's own parameters: the shape's, without the kernel's keys.
+  static Params shape_params(const PluginUse& c, const Schema& kernel_keys) {
+    json params = c.params.json();
+    for (const auto& k : kernel_keys.params()) params.erase(k.name);
+    return Params(params, c.pointer);
+  }
+
+  /// A contactor on a boundary group (docs/scene.md, "Contactors on meshes"): a shape on
+  /// one node is repeated on each node of the group's facets (candidates: `point`), a
+  /// facet shape on each facet (antagonists: `edge`, `face`), in the group's order.
+  template <class Emit>
+  void emit_boundary(const State& st, std::size_t body, const PluginUse& ct, const Schema& kernel_keys, Registry& reg,
+                     const BuildContext& ctx, Emit& emit) const {
+    if (ct.params.has("node"))
+      throw InputError(ct.pointer + "/node", "a contactor on a \"boundary\" sits on the boundary's nodes or facets: "
+                                             "give \"node\" or \"boundary\", not both");
+    const FacetGroup& group = st.facet_group(body, ct.params.string("boundary"), ct.pointer + "/boundary");
+    const Params params = shape_params(ct, kernel_keys);
+    const Placement place_at = placement(ct.params);
+    Owned<Shape> first = reg.create<Shape>(ct.name, params, ctx, ct.pointer + "/shape");
+    auto make = [&]() { return first ? std::move(first) : reg.create<Shape>(ct.name, params, ctx, ct.pointer + "/shape"); };
+    if (first->support() == Support::facet) {
+      if (!place_at.identity())
+        throw InputError(ct.pointer, "a facet shape (\"" + ct.name + "\") is its facet: it takes no \"offset\" or rotation");
+      const std::size_t want_lo = dim_ == 2 ? 2 : 3, want_hi = dim_ == 2 ? 2 : 4;
+      for (std::size_t f = 0; f < group.size(); ++f) {
+        if (group.count(f) < want_lo || group.count(f) > want_hi)
+          throw InputError(ct.pointer + "/boundary", "facet " + std::to_string(f) + " of group \"" + ct.params.string("boundary") +
+                                                         "\" has " + std::to_string(group.count(f)) + " nodes: a " +
+                                                         (dim_ == 2 ? "2D facet has 2" : "3D facet has 3 or 4"));
+        emit(make(), ct, place_at, group.facet(f), static_cast<int>(group.count(f)));
+      }
+      return;
+    }
+    std::vector<std::size_t> nodes = group.nodes;
+    std::sort(nodes.begin(), nodes.end());
+    nodes.erase(std::unique(nodes.begin(), nodes.end()), nodes.end());
+    for (const std::size_t n : nodes) emit(make(), ct, place_at, &n, 1);
+  }
 
   /// A validated contactor's placement in its body frame (kernel keys, defaults filled in).
   Placement placement(const Params& c) const {
@@ -423,6 +467,7 @@ class SceneChecker {
     s.directory = (fs::path(ctx.output_dir) / (*export_)["directory"].get<std::string>()).lexically_normal().string();
     s.stem = fs::path(w.scene_file).stem().string();
     s.min_contacts = (*export_)["min_contacts"].get<long>();
+    s.global = (*export_)["kind"] == "global";
     s.scene_file = w.scene_file;
     json solver = solver_.params.json();
     solver["type"] = solver_.name;
@@ -498,7 +543,8 @@ class SceneChecker {
     if (!top_["materials"].is_object()) return;
     for (auto it = top_["materials"].begin(); it != top_["materials"].end(); ++it) {
       json m = validate_object(it.value(), scene_schema::material(), "/materials/" + pointer_token(it.key()), v);
-      if (m.contains("density") && m["density"].is_number()) materials_[it.key()] = m["density"].get<double>();
+      if (m.contains("density") && m["density"].is_number())
+        materials_[it.key()] = Params(m, "/materials/" + pointer_token(it.key()));
     }
   }
 
@@ -655,6 +701,7 @@ class SceneChecker {
       drv.pointer = ptr;
       const std::string name = d["body"].get<std::string>();
       drv.body = body_index(name);
+      if (d.contains("nodes") && d["nodes"].is_string()) drv.node_group = d["nodes"].get<std::string>();
       if (drv.body < 0) {
         errors_.emplace_back(ptr + "/body", "no body named \"" + name + "\"" + did_you_mean(name, body_names()));
         continue;
@@ -682,6 +729,39 @@ class SceneChecker {
     std::vector<std::string> names;
     for (const auto& b : bodies_) names.push_back(b.name);
     return names;
+  }
+
+  /// A driver on the rows it drives (docs/scene.md, Drivers): the body's one node, or each
+  /// node of a node group (`nodes`); its velocity cut to the modelization's k unknowns.
+  Driver built_driver(const State& st, Driver drv, const std::vector<std::string>& names) const {
+    const std::size_t b = static_cast<std::size_t>(drv.body);
+    const BodyRows rows = st.body(b);
+    const ModelInfo& m = st.models()[rows.model];
+    const std::string& name = names[b];
+    if (drv.node_group.empty()) {
+      if (rows.nodes != 1)
+        throw InputError(drv.pointer + "/body", "a driver without \"nodes\" imposes the velocity of a one-node body: body \"" +
+                                                    name + "\" is a \"" + m.name + "\" body with " + std::to_string(rows.nodes) +
+                                                    " nodes; give \"nodes\", one of its node groups");
+      drv.rows = {rows.first_node};
+    } else {
+      drv.rows = st.node_group(b, drv.node_group, drv.pointer + "/nodes");
+    }
+    if (!st.has(m.nodes, node_fields::imposed_velocity))
+      throw InputError(drv.pointer + "/body", "body \"" + name + "\" is a \"" + m.name +
+                                                  "\" body, whose modelization takes no imposed velocities");
+    const std::size_t k = static_cast<std::size_t>(m.node_dofs);
+    if (k == static_cast<std::size_t>(dim_) && drv.velocity.size() > k) {  // nodes of a mesh: no rotation
+      for (std::size_t i = k; i < drv.velocity.size(); ++i)
+        if (!std::isnan(drv.velocity[i]))
+          throw InputError(drv.pointer + "/angular_velocity", "body \"" + name + "\" is a \"" + m.name +
+                                                                  "\" body: its nodes do not turn (give \"velocity\" only)");
+      drv.velocity.resize(k);
+    }
+    if (drv.velocity.size() != k)
+      throw InputError(drv.pointer, "body \"" + name + "\" has " + std::to_string(k) + " unknowns per node, the driver gives " +
+                                        std::to_string(drv.velocity.size()));
+    return drv;
   }
 
   int body_index(const std::string& name) const {
@@ -854,7 +934,7 @@ class SceneChecker {
   std::vector<InputError> errors_;
   json top_, time_, output_, detection_;
   std::unique_ptr<Registry> registry_;
-  std::map<std::string, double> materials_;
+  std::map<std::string, Params> materials_;
   std::map<std::string, PluginUse> laws_;
   std::vector<BodyUse> bodies_;
   std::vector<Driver> drivers_;

@@ -75,7 +75,9 @@ std::shared_ptr<const io::DisplayMeshes> build_display(const State& state, const
     }
     if (!(extent > 0)) extent = 1;  // a scene of one point: a 2 m patch rather than none
     try {
-      io::add_contactor(*m, shapes[i]->display_mesh(extent), info[i].body, static_cast<int>(node_of(info[i])),
+      DisplayMesh mesh = shapes[i]->display_mesh(extent);
+      if (mesh.empty() && !shapes[i]->has_mass()) continue;  // a mesh's point, edge or face: the mesh is drawn
+      io::add_contactor(*m, mesh, info[i].body, static_cast<int>(node_of(info[i])),
                         static_cast<int>(i), info[i].offset.data(),
                         info[i].rotation.data());
     } catch (const std::invalid_argument& e) {

@@ -9,7 +9,7 @@ Schema top() {
   s.object("time", "time stepping: step, duration, theta, integrator");
   s.vector("gravity", "gravity acceleration", length::dimension).units("m/s2").fallback(nullptr);
   s.array("plugin_paths", "extra folders searched first for plugin libraries").fallback(nlohmann::json::array());
-  s.object("materials", "named materials: {name: {density}}").fallback(nlohmann::json::object());
+  s.object("materials", "named materials: {name: {density, young, poisson}}").fallback(nlohmann::json::object());
   s.object("laws", "named contact laws: {name: {type, ...}}").fallback(nlohmann::json::object());
   s.array("bodies", "the bodies");
   s.object("models", "per modelization the bodies name: {name: {integrator, ...its parameters}}").optional();
@@ -32,6 +32,9 @@ Schema export_problems() {
   s.integer("every", "write the problem of every N-th step").min(1).optional();
   s.string("directory", "folder of the files, relative to the output file's folder").fallback("problems");
   s.integer("min_contacts", "steps with fewer contacts write nothing").min(1).fallback(1);
+  s.string("kind", "FCLib form: local (W, q, mu) or global (M, H, f, w, mu: deformable bodies' LHS kept sparse)")
+      .one_of({"local", "global"})
+      .fallback("local");
   return s;
 }
 
@@ -59,6 +62,10 @@ Schema output() {
 Schema material() {
   Schema s;
   s.number("density", "mass density (2D: per unit thickness)").units("kg/m3").gt(0);
+  // Elastic constants: the modelizations that read them check them (elastic: E > 0,
+  // -1 < nu < 0.5, docs/deformable.md); others ignore them.
+  s.number("young", "Young's modulus E (elastic bodies)").units("Pa").optional();
+  s.number("poisson", "Poisson's ratio nu (elastic bodies)").units("1").optional();
   return s;
 }
 
@@ -74,7 +81,9 @@ Schema contactor_kernel_keys(int dim) {
   Schema s;
   s.string("shape", "shape plugin");
   s.string("group", "contactor group, paired in `interactions`").fallback("default");
-  s.integer("node", "the body's node that supports the contactor (bodies of several nodes; rigid bodies have one)").min(0).fallback(0);
+  s.integer("node", "the body's node that supports the contactor (bodies of several nodes; rigid bodies have one; default 0)").min(0).optional();
+  s.string("boundary", "a boundary group of the body (meshes): the contactor is repeated on each of its nodes, or "
+                       "on each of its facets for a facet shape (edge, face)").optional();
   // The placement of the shape in the body frame (clusters: several contactors on a body).
   s.vector("offset", "position of the shape's origin in the body frame", length::dimension).units("m")
       .fallback(nlohmann::json(std::vector<double>(static_cast<std::size_t>(dim), 0.0)));
@@ -87,6 +96,7 @@ Schema contactor_kernel_keys(int dim) {
 Schema driver() {
   Schema s;
   s.string("body", "name of the driven body");
+  s.string("nodes", "a node group of the body (meshes): the velocity is imposed on each of its nodes").optional();
   s.vector("velocity", "imposed velocity components; null leaves one free", length::dimension)
       .units("m/s").allow_null_items().optional();
   s.vector("angular_velocity", "imposed angular velocity components (world frame); null leaves one free",

@@ -84,7 +84,7 @@ struct Mixed {
     Validation v{d, errors};
     json checked = validate_object(params, mod.body_schema(d), "/bodies", v);
     if (!errors.empty()) throw errors.front();
-    mod.init_body(st, body, Params(checked, "/bodies"), std::nullopt, std::nullopt);
+    mod.init_body(st, body, Params(checked, "/bodies"), std::nullopt, nullptr);
   }
 
   /// Contacts: chain node 0 and node 2 on the floor, the ball on chain node 1, the ball on

@@ -42,7 +42,7 @@ class Chain : public Modelization {
   }
 
   std::array<double, 3> init_body(State& st, std::size_t body, const Params& p, const std::optional<MassProperties>&,
-                                  std::optional<double>) override {
+                                  const Params*) override {
     const int d = st.dimension();
     const BodyRows r = st.body(body);
     if (r.nodes < 1) throw p.error("nodes", "expected at least one node");

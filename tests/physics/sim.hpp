@@ -63,7 +63,7 @@ class Sim {
     nlohmann::json checked = moreau::kernel::validate_object(body, model->body_schema(state.dimension()), "/bodies/0", v);
     if (!errors.empty()) throw errors.front();
     const std::size_t b = state.add_bodies({moreau::BodyLayout{name, 0, 1, 0}});
-    model->init_body(state, b, moreau::Params(checked, "/bodies/0"), std::nullopt, std::nullopt);
+    model->init_body(state, b, moreau::Params(checked, "/bodies/0"), std::nullopt, nullptr);
     return b;
   }
 

@@ -1,4 +1,5 @@
-// `disk-disk` and `sphere-sphere` share this closed form: centres distance minus radii.
+// `disk-disk` and `sphere-sphere` share this closed form: centres distance minus radii;
+// so do `point-disk` and `point-sphere` (a mesh node: radius 0).
 #include <cmath>
 #include <moreau/detector.hpp>
 

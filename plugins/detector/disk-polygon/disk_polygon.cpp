@@ -1,4 +1,5 @@
 // `disk-polygon`: closest point of the polygon to the disk centre
+// Also `point-polygon` (a mesh node: a disk of radius 0).
 #include <convex.hpp>
 #include <moreau/detector.hpp>
 
@@ -15,6 +16,6 @@ class DiskPolygon : public Detector {
     geom::disk_polygon({a.position[0], a.position[1]}, first.geometry()[0], geom::polygon_at(second.geometry(), b), alert, out);
   }
 };
-MOREAU_REGISTER(DiskPolygon, "disk-polygon")
+MOREAU_REGISTER(DiskPolygon, DETECTOR_NAME)
 }  // namespace
-MOREAU_PLUGIN_LIBRARY("moreau_detector_disk-polygon")
+MOREAU_PLUGIN_LIBRARY("moreau_detector_" DETECTOR_NAME)

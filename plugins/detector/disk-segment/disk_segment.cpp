@@ -1,4 +1,5 @@
 // `disk-segment`: a disk against a rounded segment: distance from the disk centre to the
+// Also `point-segment` (a mesh node: a disk of radius 0).
 // segment's core, minus the radius and half the thickness.
 #include <algorithm>
 #include <cmath>
@@ -39,6 +40,6 @@ class DiskSegment : public Detector {
     out.push_back(c);
   }
 };
-MOREAU_REGISTER(DiskSegment, "disk-segment")
+MOREAU_REGISTER(DiskSegment, DETECTOR_NAME)
 }  // namespace
-MOREAU_PLUGIN_LIBRARY("moreau_detector_disk-segment")
+MOREAU_PLUGIN_LIBRARY("moreau_detector_" DETECTOR_NAME)

@@ -1,4 +1,5 @@
-// `sphere-box`: closest point of the polyhedron to the sphere centre
+// `sphere-box`: closest point of the polyhedron (box or convex) to the sphere centre.
+// Also `sphere-convex`, `point-box` and `point-convex` (a mesh node: a sphere of radius 0).
 #include <convex.hpp>
 #include <moreau/detector.hpp>
 
@@ -16,6 +17,6 @@ class SphereBox : public Detector {
                             geom::polyhedron_at(second.shape_name(), second.geometry(), b), alert, out);
   }
 };
-MOREAU_REGISTER(SphereBox, "sphere-box")
+MOREAU_REGISTER(SphereBox, DETECTOR_NAME)
 }  // namespace
-MOREAU_PLUGIN_LIBRARY("moreau_detector_sphere-box")
+MOREAU_PLUGIN_LIBRARY("moreau_detector_" DETECTOR_NAME)

@@ -1,4 +1,5 @@
 // `sphere-plane`: signed distance of the sphere's centre to the plane, minus the radius.
+// Also `point-plane` (a mesh node: a sphere of radius 0).
 #include <moreau/detector.hpp>
 
 namespace {
@@ -32,6 +33,6 @@ class SpherePlane : public Detector {
     out.push_back(c);
   }
 };
-MOREAU_REGISTER(SpherePlane, "sphere-plane")
+MOREAU_REGISTER(SpherePlane, DETECTOR_NAME)
 }  // namespace
-MOREAU_PLUGIN_LIBRARY("moreau_detector_sphere-plane")
+MOREAU_PLUGIN_LIBRARY("moreau_detector_" DETECTOR_NAME)

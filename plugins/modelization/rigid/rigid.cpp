@@ -54,7 +54,7 @@ class Rigid : public Modelization {
   }
 
   std::array<double, 3> init_body(State& st, std::size_t body, const Params& p,
-                                  const std::optional<MassProperties>& shapes, std::optional<double> density) override {
+                                  const std::optional<MassProperties>& shapes, const Params* material) override {
     const int d = st.dimension();
     const std::size_t b = st.body(body).first_node;  // its row in rigid.nodes
     const bool fixed = p.boolean("fixed");
@@ -91,7 +91,7 @@ class Rigid : public Modelization {
     // Mass: explicit, or density × volume of the contactors.
     double mass = 0;
     if (p.has("mass")) mass = p.number("mass");
-    else if (shapes && density) mass = *density * shapes->volume;
+    else if (shapes && material) mass = material->number("density") * shapes->volume;
     if (!fixed && !(mass > 0))
       throw p.error("", "a body that is not fixed needs a mass: give \"mass\" and \"inertia\", or contactors and a "
                         "\"material\" with a density");

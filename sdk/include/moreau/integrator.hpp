@@ -10,8 +10,15 @@
 #include <moreau/modelization.hpp>
 #include <moreau/plugin.hpp>
 #include <moreau/step.hpp>
+#include <vector>
 
 namespace moreau {
+
+/// One entry of a body's LHS (Integrator::lhs_entries).
+struct LhsEntry {
+  int row, column;
+  double value;
+};
 
 class MOREAU_API Integrator : public Plugin {
  public:
@@ -39,6 +46,41 @@ class MOREAU_API Integrator : public Plugin {
   /// nodes × k unknowns each (column-major: column c starts at c × nodes × k). Every body
   /// supports it (for a compact one, the k × k product).
   virtual void apply_inverse(const State& state, std::size_t body, int columns, const double* in, double* out) const = 0;
+
+  /// The blocks of LHS_b⁻¹ among `count` nodes of body `body` (rows of its node set, in
+  /// that order): `out` is (count·k)², column-major, entry (i·k + a, j·k + c) the velocity
+  /// of unknown a of node i per unit impulse on unknown c of node j. This is what W needs of
+  /// a body whose LHS couples its nodes (W_b = H_b G H_bᵀ over the nodes its contacts sit
+  /// on). The default applies apply_inverse to unit columns; an integrator with a constant
+  /// LHS may keep columns between steps (linear_theta does), as long as the numbers do not
+  /// depend on what it kept (restarts stay bit-identical).
+  virtual void inverse_blocks(const State& state, std::size_t body, const std::size_t* nodes, int count,
+                              double* out) const {
+    const BodyRows rows = state.body(body);
+    const int k = state.models()[static_cast<std::size_t>(rows.model)].node_dofs;
+    const std::size_t n = rows.nodes * static_cast<std::size_t>(k), m = static_cast<std::size_t>(count) * k;
+    std::vector<double> unit(n * m, 0.0), response(n * m);
+    for (std::size_t j = 0; j < static_cast<std::size_t>(count); ++j)
+      for (int c = 0; c < k; ++c) unit[(j * k + c) * n + (nodes[j] - rows.first_node) * k + c] = 1.0;
+    apply_inverse(state, body, static_cast<int>(m), unit.data(), response.data());
+    for (std::size_t col = 0; col < m; ++col)
+      for (std::size_t i = 0; i < static_cast<std::size_t>(count); ++i)
+        for (int a = 0; a < k; ++a) out[col * m + i * k + a] = response[col * n + (nodes[i] - rows.first_node) * k + a];
+  }
+
+  /// The body's LHS over its nodes × k unknowns, for the FCLib global form of the contact
+  /// problem (M v = H r + f): its entries (row, column, value; both triangles), counting
+  /// unknowns within the body, without the constrained unknowns (fixed, imposed), which
+  /// are listed in `constrained`. False when the integrator cannot give it (the default);
+  /// the kernel inverts compact inverses itself.
+  virtual bool lhs_entries(const State& state, std::size_t body, std::vector<LhsEntry>& entries,
+                           std::vector<int>& constrained) const {
+    (void)state;
+    (void)body;
+    (void)entries;
+    (void)constrained;
+    return false;
+  }
 };
 
 }  // namespace moreau

@@ -15,6 +15,8 @@
 
 namespace moreau {
 
+struct LinearBulk;  // linear_bulk.hpp
+
 /// Mass properties of a body's contactors at unit density, in the body frame, each
 /// contactor at its placement (2D: per unit thickness; only the [0,1] components of
 /// `center` are used).
@@ -38,8 +40,8 @@ enum class Velocity {
 
 /// A contact point on one body, as the contact side hands it to the body's modelization.
 /// The point is supported by `count` nodes of the body (rows of the modelization's node
-/// set) with weights (a contactor on one node: one node, weight 1; later, a point on a
-/// mesh face: the face's nodes and its interpolation weights).
+/// set) with weights (a contactor on one node: one node, weight 1; a point on a mesh
+/// facet: the facet's 2 to 4 nodes and its interpolation weights, summing to 1).
 struct PointOnBody {
   std::size_t body = 0;
   const std::size_t* nodes = nullptr;
@@ -83,16 +85,18 @@ class MOREAU_API Modelization : public Plugin {
     (void)dim;
     return {};
   }
-  /// Fills the rows of `body` (`state.body(body)`) from its validated JSON. `contactors`
-  /// holds the unit-density mass properties of its contactors when it has any (placements
-  /// included); `density` the material's, if any. Returns the point of the scene's body
-  /// frame that the modelization took as the body's origin (`rigid`: the centre of mass of
-  /// a moving body whose inertia comes from its contactors); the kernel re-expresses the
-  /// contactor placements about it, so contactors stay where the scene put them. Zeros:
-  /// the origin is the one the scene wrote.
+  /// Fills the rows of `body` (`state.body(body)`) from its validated JSON, and records
+  /// its named groups (State::set_groups) if it has any: contactors on a `boundary` and
+  /// drivers or forces on `nodes` find them there. `contactors` holds the unit-density mass
+  /// properties of its contactors on nodes when it has any (placements included);
+  /// `material` the scene material the body names (`materials`: `density`, and `young`,
+  /// `poisson` when given; errors at its pointer), null when it names none. Returns the
+  /// point of the scene's body frame that the modelization took as the body's origin
+  /// (`rigid`: the centre of mass of a moving body whose inertia comes from its
+  /// contactors); the kernel re-expresses the contactor placements about it, so contactors
+  /// stay where the scene put them. Zeros: the origin is the one the scene wrote.
   virtual std::array<double, 3> init_body(State& state, std::size_t body, const Params& params,
-                                          const std::optional<MassProperties>& contactors,
-                                          std::optional<double> density) = 0;
+                                          const std::optional<MassProperties>& contactors, const Params* material) = 0;
   /// The topology of its element set, for the viewer; called once after every body is built.
   virtual Topology topology(const State&) const { return {}; }
 
@@ -102,6 +106,26 @@ class MOREAU_API Modelization : public Plugin {
   /// False when bulk() has nothing to do (rigid bodies: gravity and gyroscopic terms are
   /// the integrator's), so the stage is skipped.
   virtual bool has_bulk() const { return true; }
+
+  /// A linear modelization (the seed's eq. 3 with F = −K q − C q̇, constant matrices) gives
+  /// its integrator the bulk of one body: M, C, K over its nodes × k unknowns, its constant
+  /// loads and its fixed unknowns (linear_bulk.hpp). Returns false when it is not linear
+  /// (the default). Called once per body when the integrator prepares.
+  virtual bool linear_bulk(const State& state, std::size_t body, LinearBulk& out) const {
+    (void)state;
+    (void)body;
+    (void)out;
+    return false;
+  }
+  /// Fields derived from the unknowns (stresses of deformable bodies, for the output),
+  /// from the values at `depth`: called after every integrator's update (Depth::end) and
+  /// before the first frame of a run (Depth::begin). Skipped when has_derived_fields() is
+  /// false (the default).
+  virtual void derived_fields(State& state, Depth depth) {
+    (void)state;
+    (void)depth;
+  }
+  virtual bool has_derived_fields() const { return false; }
 
   // ---- Kinematics, for the contact side ---------------------------------------------------
   /// The generalised velocity of node `node` (a row of its node set): k values.

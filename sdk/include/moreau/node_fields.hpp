@@ -5,6 +5,12 @@
 //
 //   position            [d]      m     frame   the node's position: drawn by the viewer, the
 //                                            reference point of contactors placed on the node
+//   reference_position  [d]      m     once    where it is at rest (deformable bodies: the mesh)
+//   displacement        [k]      m     frame   q − q_ref of a deformable body's node (linear
+//                                            modelizations: the unknowns' integral)
+//   velocity            [k]      m/s   frame   its generalised velocity (linear modelizations)
+//   free_velocity       [k]      m/s   none    velocity at the end of the step without contact
+//                                            impulses (linear modelizations)
 //   angle / orientation [1] / [4]        frame   optional rotation of the node frame (2D angle, 3D
 //                                            unit quaternion w x y z); absent: no rotation
 //   detection_position  [d]      m     none    where the node is at the detection configuration
@@ -22,6 +28,10 @@
 namespace moreau::node_fields {
 
 inline constexpr const char* position = "position";
+inline constexpr const char* reference_position = "reference_position";
+inline constexpr const char* displacement = "displacement";
+inline constexpr const char* velocity = "velocity";
+inline constexpr const char* free_velocity = "free_velocity";
 inline constexpr const char* angle = "angle";
 inline constexpr const char* orientation = "orientation";
 inline constexpr const char* detection_position = "detection_position";

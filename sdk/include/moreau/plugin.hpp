@@ -70,6 +70,7 @@ class MOREAU_API Plugin {
 struct BuildContext {
   int dimension = 3;
   double time_step = 0;
+  double theta = 0.5;      ///< θ of the θ-scheme (time.theta)
   std::string scene_file;  ///< path of the scene, for messages
   std::string scene_dir;   ///< folder of the scene (relative input paths resolve here)
   std::string output_dir;  ///< folder of the run's output file (relative output paths resolve here)

@@ -243,6 +243,24 @@ struct BodyRows {
   std::size_t first_element = 0, elements = 0;
 };
 
+/// Named groups of a body's rows (docs/architecture.md "Groups"): a mesh's physical groups
+/// or a generator's sets, recorded by the modelization when it fills the body, read by the
+/// kernel (contactors on a boundary, drivers on nodes) and by plugins (forces on nodes).
+/// A facet group lists boundary facets (edges in 2D, triangles or quadrangles in 3D), each
+/// as node rows in outward order: counter-clockwise seen from outside in 3D; in 2D the
+/// edge's direction turned by −90° is the outward normal.
+struct FacetGroup {
+  std::vector<std::size_t> offset{0};  ///< facet i has the nodes nodes[offset[i] .. offset[i+1])
+  std::vector<std::size_t> nodes;      ///< rows of the modelization's node set
+  std::size_t size() const { return offset.size() - 1; }
+  std::size_t count(std::size_t i) const { return offset[i + 1] - offset[i]; }
+  const std::size_t* facet(std::size_t i) const { return nodes.data() + offset[i]; }
+};
+struct BodyGroups {
+  std::map<std::string, std::vector<std::size_t>> nodes;  ///< node rows, sorted
+  std::map<std::string, FacetGroup> facets;
+};
+
 /// A body to add: its name, modelization and how many nodes and elements it owns.
 struct BodyLayout {
   std::string name;
@@ -410,6 +428,34 @@ class State {
   /// Whether body `b`'s modelization has the node field `name`.
   bool has_node_field(std::size_t b, const std::string& name) const { return has(model_of(b).nodes, name); }
 
+  // ---- Named groups of a body's rows ---------------------------------------------------
+  /// Records body `b`'s groups (its modelization, when it fills the body).
+  void set_groups(std::size_t b, BodyGroups g) { groups_[b] = std::move(g); }
+  /// Body `b`'s groups, or null when its modelization records none (rigid bodies).
+  const BodyGroups* groups(std::size_t b) const {
+    auto it = groups_.find(b);
+    return it == groups_.end() ? nullptr : &it->second;
+  }
+  /// The node rows of body `b`'s group `name`. Throws InputError at `pointer`, naming the
+  /// body's groups, when it has no such group.
+  const std::vector<std::size_t>& node_group(std::size_t b, const std::string& name, const std::string& pointer) const {
+    const BodyGroups* g = groups(b);
+    if (g) {
+      auto it = g->nodes.find(name);
+      if (it != g->nodes.end()) return it->second;
+    }
+    throw InputError(pointer, group_fault(b, name, "node", g ? names_of(g->nodes) : std::string()));
+  }
+  /// The facets of body `b`'s group `name` (same faults as node_group).
+  const FacetGroup& facet_group(std::size_t b, const std::string& name, const std::string& pointer) const {
+    const BodyGroups* g = groups(b);
+    if (g) {
+      auto it = g->facets.find(name);
+      if (it != g->facets.end()) return it->second;
+    }
+    throw InputError(pointer, group_fault(b, name, "boundary", g ? names_of(g->facets) : std::string()));
+  }
+
   /// End of step: ⁺ values become the ⁻ values of the next step (buffers swapped).
   void swap_depths() {
     for (auto& s : sets_) s.swap_depths();
@@ -419,6 +465,18 @@ class State {
   static FieldSpec owner_field(const std::string& set) {
     return field_spec(set, body_fields::body, 1, 1, 1, "1", FieldOutput::once, false,
                       "the body of each row (index into /bodies)", FileType::int32);
+  }
+  template <class Map>
+  static std::string names_of(const Map& m) {
+    std::string s;
+    for (const auto& [k, v] : m) s += (s.empty() ? "\"" : ", \"") + k + "\"";
+    return s;
+  }
+  std::string group_fault(std::size_t b, const std::string& name, const char* kind, const std::string& valid) const {
+    const std::string body = "body \"" + names_[b] + "\"";
+    if (valid.empty())
+      return body + " (a \"" + model_of(b).name + "\" body) has no " + kind + " groups, so no " + kind + " group \"" + name + "\"";
+    return body + " has no " + kind + " group \"" + name + "\"; its " + kind + " groups: " + valid;
   }
   std::size_t set_lookup(const std::string& name) const {
     auto it = set_index_.find(name);
@@ -430,6 +488,7 @@ class State {
   std::vector<ModelInfo> models_;
   std::deque<EntitySet> sets_;  // deque: references stay valid when sets are added
   std::map<std::string, std::size_t> set_index_;
+  std::map<std::size_t, BodyGroups> groups_;
 };
 
 }  // namespace moreau

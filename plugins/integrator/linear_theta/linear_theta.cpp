@@ -1,0 +1,293 @@
+// `linear_theta`: the θ-scheme of the seed's eq. 6 for linear modelizations (`elastic`),
+// body by body, from what the modelization gives (Modelization::linear_bulk):
+//   LHS = M + hθC + h²θ²K,
+//   RHS = [M − h(1−θ)C − h²θ(1−θ)K] v⁻ − hK u⁻ + h[(1−θ)f⁻ + θf⁺],
+//   LHS v⁺ = RHS + Hᵀr,   u⁺ = u⁻ + h[(1−θ)v⁻ + θv⁺],   position = reference + u,
+// with f the constant loads, gravity and the step's external forces (force plugins: the
+// same at both ends of the step). Fixed unknowns and imposed velocities (drivers on node
+// groups) are constrained: the free ones solve LHS_ff v_f = RHS_f − LHS_fc v_c + p_f, with
+// LHS_ff factorised once per run (fem::LinearThetaScheme, sparse Cholesky chosen by the
+// benchmark, docs/deformable.md) and again only when the set of driven unknowns changes.
+//
+// For the contact side: LHS_b⁻¹ on columns (apply_inverse), and the blocks of LHS_b⁻¹
+// among the nodes the contacts sit on (inverse_blocks), which W needs. Those come from
+// columns LHS_ff⁻¹ e (k solves per node, kept between steps restricted to the rows of the
+// body's boundary nodes): a node that stays in contact costs no solve at the next step.
+// Block (a, b) is always taken from the column of the lower-numbered node, so the numbers
+// do not depend on which columns were kept (restarts stay bit-identical).
+#include <algorithm>
+#include <cmath>
+#include <map>
+#include <memory>
+#include <moreau/integrator.hpp>
+#include <moreau/linear_bulk.hpp>
+#include <moreau/node_fields.hpp>
+
+#include "fem/theta_scheme.hpp"
+
+namespace {
+
+using namespace moreau;
+namespace N = moreau::node_fields;
+
+class LinearTheta : public Integrator {
+ public:
+  static Schema schema() { return {}; }
+  static constexpr const char* doc =
+      "theta-scheme of linear modelizations (elastic): LHS = M + h theta C + h^2 theta^2 K factorised once (eq. 6)";
+  LinearTheta(const Params&, const BuildContext& c) : h_(c.time_step), theta_(c.theta) {}
+
+  void prepare(State& st, const Modelization& model) override {
+    nodes_ = model.node_set();
+    d_ = st.dimension();
+    k_ = model.node_dofs(d_);
+    for (const char* f : {N::displacement, N::velocity, N::free_velocity})
+      if (!st.has(nodes_, f))
+        throw InputError("/models", "linear_theta integrates linear modelizations with node fields displacement, velocity "
+                                    "and free_velocity: \"" + nodes_ + "\" has no '" + f + "'");
+    with_position_ = st.has(nodes_, N::position) && st.has(nodes_, N::reference_position) && k_ == d_;
+    const int model_index = st.find_model(model_name(st));
+    bodies_.clear();
+    for (std::size_t b = 0; b < st.bodies(); ++b) {
+      if (st.body(b).model != model_index) continue;
+      auto B = std::make_unique<Body>();
+      B->body = b;
+      const BodyRows rows = st.body(b);
+      B->first = rows.first_node;
+      B->nodes = rows.nodes;
+      if (!model.linear_bulk(st, b, B->bulk))
+        throw InputError("/models", "linear_theta integrates linear modelizations: \"" + st.models()[model_index].name +
+                                        "\" gives no linear bulk (Modelization::linear_bulk)");
+      const Eigen::Index n = static_cast<Eigen::Index>(B->nodes) * k_;
+      if (B->bulk.C.rows() == 0) B->bulk.C.resize(n, n);
+      B->constrained = B->bulk.fixed;
+      // The rows whose columns of LHS⁻¹ are kept: the nodes of its facet groups (where
+      // contacts can be); other nodes join them when asked.
+      if (const BodyGroups* g = st.groups(b))
+        for (const auto& [name, facets] : g->facets)
+          for (const std::size_t r : facets.nodes) B->add_row(r - B->first);
+      factorise(*B);
+      bodies_.push_back(std::move(B));
+    }
+  }
+
+  void free_velocity(StepContext& c) override {
+    State& st = c.state;
+    const double* u = st.field(nodes_, N::displacement).data(Depth::begin);
+    const double* v = st.field(nodes_, N::velocity).data(Depth::begin);
+    const Field* imposed = st.set(nodes_).find(N::imposed_velocity);
+    const double* F = c.external_forces && st.has(nodes_, N::force) ? st.field(nodes_, N::force).data() : nullptr;
+    double* vf = st.field(nodes_, N::free_velocity).data();
+    Eigen::VectorXd g(d_);
+    for (int i = 0; i < d_; ++i) g[i] = c.gravity[static_cast<std::size_t>(i)];
+    for (auto& Bp : bodies_) {
+      Body& B = *Bp;
+      const Eigen::Index n = static_cast<Eigen::Index>(B.nodes) * k_, off = static_cast<Eigen::Index>(B.first) * k_;
+      // The constrained unknowns of this step: fixed, and the driven ones (non-NaN).
+      std::vector<int> constrained = B.bulk.fixed;
+      if (imposed)
+        for (Eigen::Index i = 0; i < n; ++i)
+          if (!std::isnan(imposed->data()[off + i])) constrained.push_back(static_cast<int>(i));
+      std::sort(constrained.begin(), constrained.end());
+      constrained.erase(std::unique(constrained.begin(), constrained.end()), constrained.end());
+      if (constrained != B.constrained) {
+        B.constrained = std::move(constrained);
+        factorise(B);
+      }
+      Eigen::VectorXd f = Eigen::VectorXd::Zero(n);
+      if (B.bulk.load.size() == n) f += B.bulk.load;
+      if (B.bulk.gravity.rows() == n) f += B.bulk.gravity * g;
+      if (F) f += Eigen::Map<const Eigen::VectorXd>(F + off, n);
+      Eigen::VectorXd vc(static_cast<Eigen::Index>(B.constrained.size()));
+      for (std::size_t i = 0; i < B.constrained.size(); ++i) {
+        const double x = imposed ? imposed->data()[off + B.constrained[i]] : NAN;
+        vc[static_cast<Eigen::Index>(i)] = std::isnan(x) ? 0.0 : x;  // fixed: 0
+      }
+      const Eigen::VectorXd out = B.scheme->free_velocity(Eigen::Map<const Eigen::VectorXd>(u + off, n),
+                                                          Eigen::Map<const Eigen::VectorXd>(v + off, n), f, f, vc);
+      Eigen::Map<Eigen::VectorXd>(vf + off, n) = out;
+    }
+  }
+
+  void update_dofs(StepContext& c) override {
+    State& st = c.state;
+    const double a = c.h * (1 - c.theta), b = c.h * c.theta;
+    const double* u0 = st.field(nodes_, N::displacement).data(Depth::begin);
+    double* u1 = st.field(nodes_, N::displacement).data(Depth::end);
+    const double* v0 = st.field(nodes_, N::velocity).data(Depth::begin);
+    double* v1 = st.field(nodes_, N::velocity).data(Depth::end);
+    const double* vf = st.field(nodes_, N::free_velocity).data();
+    const double* P = c.contact_impulses && st.has(nodes_, N::reaction) ? st.field(nodes_, N::reaction).data() : nullptr;
+    for (auto& Bp : bodies_) {
+      const Body& B = *Bp;
+      const Eigen::Index n = static_cast<Eigen::Index>(B.nodes) * k_, off = static_cast<Eigen::Index>(B.first) * k_;
+      Eigen::Map<Eigen::VectorXd> v(v1 + off, n);
+      v = Eigen::Map<const Eigen::VectorXd>(vf + off, n);
+      if (P) {
+        const Eigen::Map<const Eigen::VectorXd> p(P + off, n);
+        if (p.cwiseAbs().maxCoeff() > 0) v += B.scheme->impulse_response(p);
+      }
+      for (Eigen::Index i = 0; i < n; ++i) u1[off + i] = u0[off + i] + a * v0[off + i] + b * v[i];
+    }
+    if (!with_position_) return;
+    const double* X = st.field(nodes_, N::reference_position).data();
+    double* x1 = st.field(nodes_, N::position).data(Depth::end);
+    const std::size_t total = st.set(nodes_).rows() * static_cast<std::size_t>(d_);
+    for (std::size_t i = 0; i < total; ++i) x1[i] = X[i] + u1[i];
+  }
+
+  void detection_configuration(StepContext& c) override {
+    // Detection on q⁻ + (1−θ)h v⁻, as for rigid bodies; a node may travel 2h|v⁻| + h²|g|.
+    State& st = c.state;
+    if (!with_position_ || !st.has(nodes_, N::detection_position)) return;
+    const double a = (1 - c.theta) * c.h;
+    const double* x = st.field(nodes_, N::position).data(Depth::begin);
+    const double* v = st.field(nodes_, N::velocity).data(Depth::begin);
+    double* p = st.field(nodes_, N::detection_position).data();
+    double* travel = st.has(nodes_, N::travel) ? st.field(nodes_, N::travel).data() : nullptr;
+    double g = 0;
+    for (double gk : c.gravity) g += gk * gk;
+    g = std::sqrt(g);
+    const std::size_t rows = st.set(nodes_).rows();
+    for (std::size_t i = 0; i < rows; ++i) {
+      double v2 = 0;
+      for (int k = 0; k < d_; ++k) {
+        p[i * d_ + k] = x[i * d_ + k] + a * v[i * d_ + k];
+        v2 += v[i * d_ + k] * v[i * d_ + k];
+      }
+      if (travel) {
+        travel[2 * i] = 2 * c.h * std::sqrt(v2) + c.h * c.h * g;
+        travel[2 * i + 1] = 0;
+      }
+    }
+  }
+
+  bool compact_inverse(const State&, std::size_t, double*) const override { return false; }
+
+  void apply_inverse(const State&, std::size_t body, int columns, const double* in, double* out) const override {
+    const Body& B = body_of(body);
+    const Eigen::Index n = static_cast<Eigen::Index>(B.nodes) * k_;
+    Eigen::Map<Eigen::MatrixXd>(out, n, columns) =
+        B.scheme->impulse_responses(Eigen::Map<const Eigen::MatrixXd>(in, n, columns));
+  }
+
+  void inverse_blocks(const State&, std::size_t body, const std::size_t* nodes, int count, double* out) const override {
+    Body& B = body_of(body);
+    std::vector<std::size_t> local(static_cast<std::size_t>(count));
+    for (int i = 0; i < count; ++i) local[i] = nodes[i] - B.first;
+    // Rows not kept yet: keep them from now on (the kept columns lack them: drop those).
+    bool grew = false;
+    for (const std::size_t a : local) grew = B.add_row(a) || grew;
+    if (grew) B.columns.clear();
+    // Columns for the nodes that have none; past the memory budget, only the asked ones stay.
+    const std::size_t per_node = static_cast<std::size_t>(k_) * B.kept.size() * static_cast<std::size_t>(k_);
+    std::size_t missing = 0;
+    for (const std::size_t a : local) missing += B.columns.count(a) == 0;
+    if ((B.columns.size() + missing) * per_node * sizeof(double) > budget_bytes) {
+      std::map<std::size_t, std::vector<double>> asked;
+      for (const std::size_t a : local)
+        if (auto it = B.columns.find(a); it != B.columns.end()) asked.emplace(a, std::move(it->second));
+      B.columns = std::move(asked);
+    }
+    const Eigen::Index n = static_cast<Eigen::Index>(B.nodes) * k_;
+    for (const std::size_t a : local) {
+      if (B.columns.count(a)) continue;
+      Eigen::MatrixXd unit = Eigen::MatrixXd::Zero(n, k_);
+      for (int c = 0; c < k_; ++c) unit(static_cast<Eigen::Index>(a) * k_ + c, c) = 1;
+      const Eigen::MatrixXd response = B.scheme->impulse_responses(unit);
+      std::vector<double>& col = B.columns[a];  // [k columns][kept rows × k]
+      const std::size_t rk = B.kept.size() * static_cast<std::size_t>(k_);
+      col.resize(static_cast<std::size_t>(k_) * rk);
+      for (int c = 0; c < k_; ++c)
+        for (std::size_t r = 0; r < B.kept.size(); ++r)
+          for (int q = 0; q < k_; ++q)
+            col[c * rk + r * k_ + q] = response(static_cast<Eigen::Index>(B.kept[r]) * k_ + q, c);
+    }
+    // G(i·k + α, j·k + c) = [LHS⁻¹](a_i α, a_j c), from the column of the lower node.
+    const std::size_t m = static_cast<std::size_t>(count) * k_, rk = B.kept.size() * static_cast<std::size_t>(k_);
+    for (std::size_t j = 0; j < local.size(); ++j)
+      for (std::size_t i = 0; i < local.size(); ++i) {
+        const bool from_j = local[j] <= local[i];
+        const std::size_t owner = from_j ? local[j] : local[i], other = from_j ? local[i] : local[j];
+        const std::vector<double>& col = B.columns.at(owner);
+        const std::size_t row = B.row_of.at(other);
+        for (int c = 0; c < k_; ++c)
+          for (int al = 0; al < k_; ++al) {
+            // from_j: column c of node a_j at row (a_i, α); else column α of a_i at row (a_j, c).
+            const double x = from_j ? col[c * rk + row * k_ + al] : col[al * rk + row * k_ + c];
+            out[(j * k_ + c) * m + i * k_ + al] = x;
+          }
+      }
+  }
+
+  bool lhs_entries(const State&, std::size_t body, std::vector<LhsEntry>& entries, std::vector<int>& constrained) const override {
+    const Body& B = body_of(body);
+    const auto& free = B.scheme->partition().free();
+    const fem::SparseMatrix lhs = B.scheme->partition().free_block(
+        fem::theta_lhs(B.bulk.M, B.bulk.C, B.bulk.K, B.scheme->step(), B.scheme->theta()));
+    entries.clear();
+    for (int col = 0; col < lhs.outerSize(); ++col)
+      for (fem::SparseMatrix::InnerIterator it(lhs, col); it; ++it)
+        entries.push_back(LhsEntry{free[static_cast<std::size_t>(it.row())], free[static_cast<std::size_t>(col)], it.value()});
+    constrained = B.scheme->partition().constrained();
+    return true;
+  }
+
+ private:
+  static constexpr std::size_t budget_bytes = std::size_t{256} << 20;  ///< kept columns of LHS⁻¹, per body
+
+  struct Body {
+    std::size_t body = 0, first = 0, nodes = 0;
+    LinearBulk bulk;
+    std::vector<int> constrained;  ///< unknowns within the body, sorted
+    std::unique_ptr<fem::LinearThetaScheme> scheme;
+    // Kept columns of LHS⁻¹ (see inverse_blocks): the rows kept (nodes within the body),
+    // and per node its k columns restricted to them.
+    std::vector<std::size_t> kept;
+    std::map<std::size_t, std::size_t> row_of;
+    std::map<std::size_t, std::vector<double>> columns;
+    bool add_row(std::size_t node) {
+      if (row_of.count(node)) return false;
+      row_of[node] = kept.size();
+      kept.push_back(node);
+      return true;
+    }
+  };
+
+  /// The model's name, from its node set ("<model>.nodes").
+  std::string model_name(const State& st) const {
+    for (const auto& m : st.models())
+      if (m.nodes == nodes_) return m.name;
+    return {};
+  }
+
+  void factorise(Body& B) const {
+    const int dofs = static_cast<int>(B.nodes) * k_;
+    try {
+      B.scheme = std::make_unique<fem::LinearThetaScheme>(B.bulk.M, B.bulk.C, B.bulk.K, h_, theta_,
+                                                          fem::DofPartition(dofs, B.constrained));
+    } catch (const std::exception& e) {
+      throw RunError("linear_theta: body " + std::to_string(B.body) + ": cannot factorise M + h theta C + h^2 theta^2 K: " +
+                     e.what());
+    }
+    B.columns.clear();
+  }
+
+  Body& body_of(std::size_t body) const {
+    for (const auto& B : bodies_)
+      if (B->body == body) return *B;
+    throw std::logic_error("linear_theta: body " + std::to_string(body) + " is not one of its bodies");
+  }
+
+  double h_, theta_;
+  int d_ = 3, k_ = 3;
+  bool with_position_ = false;
+  std::string nodes_;
+  std::vector<std::unique_ptr<Body>> bodies_;
+};
+
+MOREAU_REGISTER(LinearTheta, "linear_theta")
+
+}  // namespace
+
+MOREAU_PLUGIN_LIBRARY("moreau_integrator_linear_theta")
