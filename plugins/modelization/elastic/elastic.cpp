@@ -112,6 +112,18 @@ class Elastic : public Modelization {
         }
       }
     }
+    // The node's share of the mass: M's column sums (its diagonal when lumped), so that
+    // Σ mass v is the body's momentum.
+    {
+      const fem::SparseMatrix M = fem::mass_matrix(mesh, B.material.density, B.lumped ? fem::MassKind::lumped
+                                                                                         : fem::MassKind::consistent);
+      Field& mass = st.field(E::nodes, E::mass);
+      for (int col = 0; col < M.outerSize(); col += d) {
+        double sum = 0;
+        for (fem::SparseMatrix::InnerIterator it(M, col); it; ++it) sum += it.value();
+        mass.row(rows.first_node + static_cast<std::size_t>(col / d))[0] = sum;
+      }
+    }
     Field& type = st.field(E::elements, E::type);
     for (int e = 0; e < mesh.element_count(); ++e)
       type.row(rows.first_element + static_cast<std::size_t>(e))[0] = fem::element_info(mesh.elements.type[e]).gmsh_type;

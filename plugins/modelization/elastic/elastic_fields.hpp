@@ -15,6 +15,7 @@ inline constexpr const char* nodes = "elastic.nodes";
 inline constexpr const char* elements = "elastic.elements";
 
 inline constexpr const char* fixed = "fixed";
+inline constexpr const char* mass = "mass";
 inline constexpr const char* stress = "stress";
 inline constexpr const char* von_mises = "von_mises";
 inline constexpr const char* type = "type";
@@ -35,6 +36,8 @@ inline std::vector<FieldSpec> fields() {
       node(N::velocity, 2, 3, 2, "m/s", O::frame, true, "velocity"),
       node(N::reference_position, 2, 3, 1, "m", O::once, false, "position in the mesh (at rest)"),
       node(fixed, 1, 1, 1, "1", O::once, false, "1 for a node of a `fixed` group (all components held)", FileType::int8),
+      node(mass, 1, 1, 1, "kg", O::once, false,
+           "the node's share of the mass: column sum of M (momentum = sum of mass v; 2D: kg/m)"),
       node(stress, 6, 6, 1, "Pa", O::frame, false,
            "Cauchy stress averaged over the node's elements (weighted by their measure), xx yy zz xy yz xz"),
       node(von_mises, 1, 1, 1, "Pa", O::frame, false, "von Mises equivalent of the nodal stress"),
