@@ -3,7 +3,7 @@
 // Pose::nodes; its direction turned by −90° is the outward normal).
 //  - The centre projects inside the edge: the normal is the edge's, the gap the signed
 //    distance to its line minus the radius; weights (1 − t, t) on its nodes.
-//  - It projects past an end and lies in front: the closest point is that node, the normal
+//  - It projects past an end (by more than 1e-9 of the edge) and lies in front: the closest point is that node, the normal
 //    points from it to the centre (a corner of the mesh).
 //  - It lies behind the line past an end, or deeper behind it than the edge is long: no
 //    contact (the neighbouring edge, or the other side of a thin body, owns it).
@@ -36,8 +36,11 @@ class RoundEdge : public Detector {
     const double cx = a.position[0] - p0[0], cy = a.position[1] - p0[1];
     const double t = (cx * ex + cy * ey) / L2, s = cx * nx + cy * ny;
     if (s < -L) return;
-    double qt = t, gx = nx, gy = ny, dist = s;
-    if (t < 0 || t > 1) {
+    // A node within rounding of an edge's end is on the edge: two meshes whose boundary
+    // nodes coincide (a conforming interface) keep their contacts at the corners.
+    constexpr double end_tolerance = 1e-9;
+    double qt = std::clamp(t, 0.0, 1.0), gx = nx, gy = ny, dist = s;
+    if (t < -end_tolerance || t > 1 + end_tolerance) {
       if (s <= 0) return;
       qt = std::clamp(t, 0.0, 1.0);
       const double dx = cx - qt * ex, dy = cy - qt * ey;
