@@ -62,6 +62,41 @@ std::string box_stack_scene() {
 })";
 }
 
+/// Rigid and elastic bodies in one run (issue 12): an elastic slab on a rigid floor, two
+/// rigid disks falling on it. Its state is the rigid node set and the elastic node set.
+std::string mixed_scene(double duration) {
+  return R"({
+  "format": "moreau-scene/1",
+  "dimension": 2,
+  "time": {"step": 0.001, "duration": )" + std::to_string(duration) + R"(, "theta": 0.5},
+  "gravity": [0, -9.81],
+  "materials": {"soft": {"density": 1000, "young": 1e6, "poisson": 0.3}, "hard": {"density": 2000}},
+  "laws": {"rough": {"type": "coulomb", "friction": 0.3}},
+  "bodies": [
+    {"name": "floor", "fixed": true, "position": [0, -0.01], "contactors": [{"shape": "segment", "length": 1, "thickness": 0.02, "group": "floor"}]},
+    {"name": "slab", "model": "elastic", "material": "soft", "rayleigh_beta": 1e-3,
+     "mesh": {"generate": "rectangle", "origin": [-0.2, 0], "extent": [0.4, 0.05], "size": 0.025},
+     "contactors": [{"shape": "point", "boundary": "ymin", "group": "slab_bottom"}, {"shape": "edge", "boundary": "ymax", "group": "slab_top"}]},
+    {"name": "a", "material": "hard", "position": [-0.05, 0.09], "contactors": [{"shape": "disk", "radius": 0.03, "group": "disk"}]},
+    {"name": "b", "material": "hard", "position": [0.06, 0.15], "angular_velocity": 3, "contactors": [{"shape": "disk", "radius": 0.03, "group": "disk"}]}
+  ],
+  "interactions": [{"groups": ["slab_bottom", "floor"], "law": "rough"}, {"groups": ["disk", "slab_top"], "law": "rough"}],
+  "output": {"file": "out.h5", "every": 10}
+})";
+}
+
+/// The mixed scene's state at a frame: both node sets and the contacts' impulses.
+void expect_same_mixed_frame(const std::string& a, const std::string& b, const std::string& frame) {
+  for (const char* f : {"rigid.nodes/position", "rigid.nodes/velocity", "rigid.nodes/angle", "elastic.nodes/displacement",
+                        "elastic.nodes/velocity", "contacts/impulse"}) {
+    const auto x = read_doubles(a, "/frames/" + frame + "/" + f);
+    const auto y = read_doubles(b, "/frames/" + frame + "/" + f);
+    ASSERT_EQ(x.size(), y.size()) << f;
+    ASSERT_FALSE(x.empty()) << f;
+    for (std::size_t i = 0; i < x.size(); ++i) EXPECT_EQ(x[i], y[i]) << f << "[" << i << "] differs";  // bit-identical
+  }
+}
+
 const char* kFields[] = {"position", "velocity", "orientation", "angular_velocity"};
 
 void expect_same_frame(const std::string& a, const std::string& b, const std::string& frame) {
@@ -218,4 +253,34 @@ TEST(Restart, ADamagedFileIsRefusedAtTheStartNamingTheDataset) {
   Result r = run_moreau({"run", scene.string(), "--restart", odd, "--out", "rest.h5", "--quiet"}, dir);
   EXPECT_EQ(r.code, 2) << r.err;
   EXPECT_NE(r.err.find("at /frames/latest: not a frame"), std::string::npos) << r.err;
+}
+
+TEST(Restart, RigidAndElasticBodiesContinueBitIdenticallyAlsoAfterSigkill) {
+  const fs::path dir = scratch_dir("restart_mixed");
+  const fs::path scene = write_file(dir, "scene.json", mixed_scene(0.3));
+  ASSERT_EQ(run_moreau({"run", scene.string(), "--out", "full.h5", "--quiet"}, dir).code, 0);
+  ASSERT_EQ(run_moreau({"run", scene.string(), "--out", "part.h5", "--steps", "150", "--quiet"}, dir).code, 0);
+  ASSERT_FALSE(read_doubles((dir / "part.h5").string(), "/frames/00000150/contacts/impulse").empty());
+  Result r = run_moreau({"run", scene.string(), "--restart", "part.h5", "--out", "rest.h5", "--quiet"}, dir);
+  ASSERT_EQ(r.code, 0) << r.err;
+  expect_same_mixed_frame((dir / "full.h5").string(), (dir / "rest.h5").string(), "00000300");
+
+  // Killed mid-run: the file stays readable and the run continues from its last frame.
+  const fs::path long_scene = write_file(dir, "long.json", mixed_scene(100.0));
+  const std::string path = (dir / "killed.h5").string();
+  const pid_t pid = start_moreau({"run", long_scene.string(), "--out", path, "--quiet"}, dir);
+  for (int i = 0; i < 300 && !fs::exists(path); ++i) std::this_thread::sleep_for(std::chrono::milliseconds(10));
+  std::this_thread::sleep_for(std::chrono::milliseconds(300));
+  ASSERT_TRUE(kill_moreau(pid));
+  const auto frames = frame_names(path);
+  ASSERT_FALSE(frames.empty());
+  const long last = std::stol(frames.back());
+  ASSERT_LT(last, 100000);
+  const long end = last + 50;
+  ASSERT_EQ(run_moreau({"run", long_scene.string(), "--out", "long_full.h5", "--quiet", "--steps", std::to_string(end)}, dir).code, 0);
+  Result c = run_moreau({"run", long_scene.string(), "--restart", path, "--out", "cont.h5", "--steps", "50", "--quiet"}, dir);
+  ASSERT_EQ(c.code, 0) << c.err;
+  char name[16];
+  std::snprintf(name, sizeof name, "%08ld", end);
+  expect_same_mixed_frame((dir / "long_full.h5").string(), (dir / "cont.h5").string(), name);
 }
