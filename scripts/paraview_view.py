@@ -60,12 +60,22 @@ def build(xmf, at=None):
     grids = [g.get('Name') for g in ET.parse(xmf).getroot().find('Domain').findall('Grid')]
     for name in grids:
         if name not in ('bodies', 'shapes', 'contacts', 'force_network', 'rigid'):
-            mesh = Show(ExtractBlock(Input=reader, Selectors=['/Root/' + name]), view)
+            block = ExtractBlock(Input=reader, Selectors=['/Root/' + name])
+            block.UpdatePipeline(time)
+            mesh = Show(block, view)
             mesh.Representation = 'Surface With Edges'
             mesh.LineWidth = 3
             mesh.PointSize = 6
-            mesh.ColorArrayName = ['POINTS', '']
             mesh.AmbientColor = mesh.DiffuseColor = mesh.EdgeColor = [0.8, 0.2, 0.1]
+            if 'von_mises' in block.PointData.keys():
+                # A deformable body (elastic): its deformed mesh coloured by the nodal von
+                # Mises stress, edges kept dark so the elements show.
+                ColorBy(mesh, ('POINTS', 'von_mises'))
+                mesh.EdgeColor = [0.2, 0.2, 0.2]
+                mesh.LineWidth = 1
+                mesh.SetScalarBarVisibility(view, True)
+            else:
+                mesh.ColorArrayName = ['POINTS', '']
     contacts = ExtractBlock(Input=reader, Selectors=['/Root/contacts'])
     contacts.UpdatePipeline(time)
     if contacts.GetDataInformation().GetNumberOfPoints() > 0:
