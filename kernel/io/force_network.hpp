@@ -3,7 +3,8 @@
 // per contact, from the first side's node (a grain's centre) to the contact point to the
 // second side's node, so chains read between grain centres and contact points. A node far
 // larger than its partner (a wall, a floor, a half-space) would turn its lines into fans
-// from its centre: its half of the line ends at the contact point instead.
+// from its centre: its half of the line ends at the contact point instead. So does the
+// half on a mesh (a body of several nodes), whose size is its nodes' radius about their mean.
 #include <moreau/state.hpp>
 #include <vector>
 

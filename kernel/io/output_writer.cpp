@@ -14,6 +14,7 @@
 #include <filesystem>
 #include <moreau/error.hpp>
 
+#include <moreau/contact_fields.hpp>
 #include <moreau/node_fields.hpp>
 
 #include "display_io.hpp"
@@ -590,7 +591,7 @@ void OutputWriter::write_frame_file(long step, double time, const State& state, 
       h5::write_floats(cg.get(), "network", network.data(), 3 * contacts, state.dimension());
     }
     // Without the rigid-only layout, a reference point per body (the mean of its nodes'
-    // positions) for the force network and for readers.
+    // positions) for readers.
     if (m.legacy.empty()) {
       const int d = state.dimension();
       std::vector<double> x(state.bodies() * d, 0.0);

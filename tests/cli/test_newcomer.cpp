@@ -1,8 +1,8 @@
 // What a new user runs into first (issue 11, point 5): suggestions for every mistyped name,
 // `--version`, grid parameters from the scene, a word when nothing can collide (or when a
-// law can gain energy), Ctrl-C, the force network drawn through contact points, and what
-// docs/output.md and docs/scene.md state (contact conventions, drivers, the segment's
-// axis, where relative paths resolve), read back from runs.
+// law can gain energy), Ctrl-C, the force network drawn through contact points (on walls
+// and on meshes), and what docs/output.md and docs/scene.md state (contact conventions,
+// drivers, the segment's axis, where relative paths resolve), read back from runs.
 #include <gtest/gtest.h>
 
 #include <fcntl.h>
@@ -216,6 +216,36 @@ TEST(Newcomer, ForceNetworkLinesEndAtContactPointsOnWalls) {
       for (int k = 0; k < 2; ++k) EXPECT_NEAR(network[6 * c + 2 + k], point[2 * c + k], 1e-6) << "middle point";
     }
   EXPECT_EQ(walls, 1);
+}
+
+// On a mesh body (issue 12) a line's end is the contact point, never a node of the mesh
+// nor its mean: a rigid disk resting on an elastic slab is drawn from its centre to the
+// contact point on the slab; the floor (0.5 m reach, the slab's nodes 0.2 m about their
+// mean: not 4 times larger) from its centre.
+TEST(Newcomer, ForceNetworkLinesEndAtContactPointsOnMeshes) {
+  const fs::path dir = scratch_dir("network_mesh");
+  const fs::path scene = write_file(dir, "scene.json", slab_and_disks_scene(0.1));
+  ASSERT_EQ(run_moreau({"run", scene.string(), "--quiet"}, dir).code, 0);
+  const std::string file = (dir / "out.h5").string(), frame = "/frames/00000100/";
+  const auto bodies = read_doubles(file, frame + "contacts/bodies");
+  const auto point = read_doubles(file, frame + "contacts/point");
+  const auto network = read_doubles(file, frame + "contacts/network");
+  const auto position = read_doubles(file, frame + "bodies/position");
+  const std::size_t nc = bodies.size() / 2;
+  ASSERT_EQ(network.size(), nc * 3 * 2);
+  int on_mesh = 0, disks = 0;
+  for (std::size_t c = 0; c < nc; ++c)
+    for (int side = 0; side < 2; ++side) {
+      const int b = static_cast<int>(bodies[2 * c + side]);  // 0 floor, 1 slab, 2 and 3 disks
+      const double* end = &network[6 * c + (side == 0 ? 0 : 4)];
+      const double* expected = b == 1 ? &point[2 * c] : &position[2 * b];
+      on_mesh += b == 1;
+      disks += b >= 2;
+      for (int k = 0; k < 2; ++k) EXPECT_NEAR(end[k], expected[k], 1e-6) << "contact " << c << " body " << b;
+      for (int k = 0; k < 2; ++k) EXPECT_NEAR(network[6 * c + 2 + k], point[2 * c + k], 1e-6) << "middle point";
+    }
+  EXPECT_EQ(on_mesh, static_cast<int>(nc));  // every contact has the slab on one side
+  EXPECT_GE(disks, 1);                       // disk a on the slab (b is still falling)
 }
 
 // Ctrl-C stops after the step under way: exit 128 + SIGINT, a complete self-contained
