@@ -322,3 +322,50 @@ TEST(ExportProblems, TheExampleSceneExportsItsSteps) {
     EXPECT_TRUE(nlohmann::json::parse(s.out)["converged"].get<bool>()) << s.out;
   }
 }
+
+TEST(ExportProblems, GlobalProblemsOfElasticBodiesReduceToTheProblemTheRunSolved) {
+  // An elastic slab on a floor, two rigid disks resting on it (issue 12): the global form
+  // (M, H, f, w) keeps the slab's LHS sparse; reduced (W = Hᵀ M⁻¹ H, q = Hᵀ M⁻¹ f + w) it is
+  // the local problem the run solved, so the run's impulses solve it at the run's tolerance.
+  const SceneRun run = run_scene("global_elastic", R"({
+  "format": "moreau-scene/1", "dimension": 2,
+  "time": {"step": 0.001, "duration": 0.12},
+  "gravity": [0, -9.81],
+  "materials": {"soft": {"density": 1000, "young": 1e6, "poisson": 0.3}, "hard": {"density": 2000}},
+  "laws": {"rough": {"type": "coulomb", "friction": 0.3}},
+  "bodies": [
+    {"name": "floor", "fixed": true, "position": [0, -0.01], "contactors": [{"shape": "segment", "length": 1, "thickness": 0.02, "group": "floor"}]},
+    {"name": "slab", "model": "elastic", "material": "soft", "rayleigh_beta": 1e-3,
+     "mesh": {"generate": "rectangle", "origin": [-0.2, 0], "extent": [0.4, 0.05], "size": 0.025},
+     "contactors": [{"shape": "point", "boundary": "ymin", "group": "slab_bottom"}, {"shape": "edge", "boundary": "ymax", "group": "slab_top"}]},
+    {"name": "a", "material": "hard", "position": [-0.05, 0.0801], "contactors": [{"shape": "disk", "radius": 0.03, "group": "disk"}]},
+    {"name": "b", "material": "hard", "position": [0.06, 0.0801], "contactors": [{"shape": "disk", "radius": 0.03, "group": "disk"}]}
+  ],
+  "interactions": [{"groups": ["slab_bottom", "floor"], "law": "rough"}, {"groups": ["disk", "slab_top"], "law": "rough"}],
+  "solver": )" + solver("w") + R"(,
+  "export_problems": {"steps": [100], "kind": "global"},
+  "output": {"file": "out.h5", "every": 1}
+})");
+  ASSERT_EQ(run.result.code, 0) << run.result.err;
+  const moreau::fclib::Problem p = moreau::fclib::read(run.problem(100));
+  ASSERT_TRUE(p.global);
+  const auto& g = p.global_problem;
+  const Eigen::Index nc = p.local.contacts();
+  ASSERT_GT(nc, 2);
+  EXPECT_EQ(g.H.cols(), 2 * nc);
+  EXPECT_EQ(g.M.rows(), g.H.rows());
+  const Eigen::MatrixXd M(g.M);
+  EXPECT_LE((M - M.transpose()).cwiseAbs().maxCoeff(), 1e-12 * M.cwiseAbs().maxCoeff());
+  // Its reduction is what the reader gives as the local problem; the run's impulses of
+  // step 100 solve it.
+  const Eigen::VectorXd r = eigen(read_doubles(run.output(), frame(100, "impulse")));
+  ASSERT_EQ(r.size(), 2 * nc);
+  const Eigen::VectorXd u = p.local.W * r + p.local.q;
+  const double err = moreau::natural_map_error(p.local, r, u);
+  std::printf("global problem: %ld unknowns, %ld contacts; the run's impulses solve its reduction to %.2e\n",
+              static_cast<long>(g.M.rows()), static_cast<long>(nc), err);
+  EXPECT_LE(err, kRunTolerance * 1.01);
+  Result solved = run_moreau({"fclib", "solve", run.problem(100), "--solver", "auto", "--tol", "1e-8"}, run.dir);
+  EXPECT_EQ(solved.code, 0) << solved.err;
+  EXPECT_NE(solved.out.find("\"converged\":true"), std::string::npos) << solved.out;
+}
