@@ -62,29 +62,6 @@ std::string box_stack_scene() {
 })";
 }
 
-/// Rigid and elastic bodies in one run (issue 12): an elastic slab on a rigid floor, two
-/// rigid disks falling on it. Its state is the rigid node set and the elastic node set.
-std::string mixed_scene(double duration) {
-  return R"({
-  "format": "moreau-scene/1",
-  "dimension": 2,
-  "time": {"step": 0.001, "duration": )" + std::to_string(duration) + R"(, "theta": 0.5},
-  "gravity": [0, -9.81],
-  "materials": {"soft": {"density": 1000, "young": 1e6, "poisson": 0.3}, "hard": {"density": 2000}},
-  "laws": {"rough": {"type": "coulomb", "friction": 0.3}},
-  "bodies": [
-    {"name": "floor", "fixed": true, "position": [0, -0.01], "contactors": [{"shape": "segment", "length": 1, "thickness": 0.02, "group": "floor"}]},
-    {"name": "slab", "model": "elastic", "material": "soft", "rayleigh_beta": 1e-3,
-     "mesh": {"generate": "rectangle", "origin": [-0.2, 0], "extent": [0.4, 0.05], "size": 0.025},
-     "contactors": [{"shape": "point", "boundary": "ymin", "group": "slab_bottom"}, {"shape": "edge", "boundary": "ymax", "group": "slab_top"}]},
-    {"name": "a", "material": "hard", "position": [-0.05, 0.09], "contactors": [{"shape": "disk", "radius": 0.03, "group": "disk"}]},
-    {"name": "b", "material": "hard", "position": [0.06, 0.15], "angular_velocity": 3, "contactors": [{"shape": "disk", "radius": 0.03, "group": "disk"}]}
-  ],
-  "interactions": [{"groups": ["slab_bottom", "floor"], "law": "rough"}, {"groups": ["disk", "slab_top"], "law": "rough"}],
-  "output": {"file": "out.h5", "every": 10}
-})";
-}
-
 /// The mixed scene's state at a frame: both node sets and the contacts' impulses.
 void expect_same_mixed_frame(const std::string& a, const std::string& b, const std::string& frame) {
   for (const char* f : {"rigid.nodes/position", "rigid.nodes/velocity", "rigid.nodes/angle", "elastic.nodes/displacement",
@@ -257,7 +234,7 @@ TEST(Restart, ADamagedFileIsRefusedAtTheStartNamingTheDataset) {
 
 TEST(Restart, RigidAndElasticBodiesContinueBitIdenticallyAlsoAfterSigkill) {
   const fs::path dir = scratch_dir("restart_mixed");
-  const fs::path scene = write_file(dir, "scene.json", mixed_scene(0.3));
+  const fs::path scene = write_file(dir, "scene.json", slab_and_disks_scene(0.3));
   ASSERT_EQ(run_moreau({"run", scene.string(), "--out", "full.h5", "--quiet"}, dir).code, 0);
   ASSERT_EQ(run_moreau({"run", scene.string(), "--out", "part.h5", "--steps", "150", "--quiet"}, dir).code, 0);
   ASSERT_FALSE(read_doubles((dir / "part.h5").string(), "/frames/00000150/contacts/impulse").empty());
@@ -266,7 +243,7 @@ TEST(Restart, RigidAndElasticBodiesContinueBitIdenticallyAlsoAfterSigkill) {
   expect_same_mixed_frame((dir / "full.h5").string(), (dir / "rest.h5").string(), "00000300");
 
   // Killed mid-run: the file stays readable and the run continues from its last frame.
-  const fs::path long_scene = write_file(dir, "long.json", mixed_scene(100.0));
+  const fs::path long_scene = write_file(dir, "long.json", slab_and_disks_scene(100.0));
   const std::string path = (dir / "killed.h5").string();
   const pid_t pid = start_moreau({"run", long_scene.string(), "--out", path, "--quiet"}, dir);
   for (int i = 0; i < 300 && !fs::exists(path); ++i) std::this_thread::sleep_for(std::chrono::milliseconds(10));

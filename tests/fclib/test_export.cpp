@@ -13,6 +13,7 @@
 
 #include "cli_runner.hpp"
 #include "h5_read.hpp"
+#include "scenes.hpp"
 #include "kernel/fclib/fclib.hpp"
 
 namespace fs = std::filesystem;
@@ -324,28 +325,12 @@ TEST(ExportProblems, TheExampleSceneExportsItsSteps) {
 }
 
 TEST(ExportProblems, GlobalProblemsOfElasticBodiesReduceToTheProblemTheRunSolved) {
-  // An elastic slab on a floor, two rigid disks resting on it (issue 12): the global form
+  // An elastic slab on a floor, a rigid disk on it (issue 12): the global form
   // (M, H, f, w) keeps the slab's LHS sparse; reduced (W = Hᵀ M⁻¹ H, q = Hᵀ M⁻¹ f + w) it is
   // the local problem the run solved, so the run's impulses solve it at the run's tolerance.
-  const SceneRun run = run_scene("global_elastic", R"({
-  "format": "moreau-scene/1", "dimension": 2,
-  "time": {"step": 0.001, "duration": 0.12},
-  "gravity": [0, -9.81],
-  "materials": {"soft": {"density": 1000, "young": 1e6, "poisson": 0.3}, "hard": {"density": 2000}},
-  "laws": {"rough": {"type": "coulomb", "friction": 0.3}},
-  "bodies": [
-    {"name": "floor", "fixed": true, "position": [0, -0.01], "contactors": [{"shape": "segment", "length": 1, "thickness": 0.02, "group": "floor"}]},
-    {"name": "slab", "model": "elastic", "material": "soft", "rayleigh_beta": 1e-3,
-     "mesh": {"generate": "rectangle", "origin": [-0.2, 0], "extent": [0.4, 0.05], "size": 0.025},
-     "contactors": [{"shape": "point", "boundary": "ymin", "group": "slab_bottom"}, {"shape": "edge", "boundary": "ymax", "group": "slab_top"}]},
-    {"name": "a", "material": "hard", "position": [-0.05, 0.0801], "contactors": [{"shape": "disk", "radius": 0.03, "group": "disk"}]},
-    {"name": "b", "material": "hard", "position": [0.06, 0.0801], "contactors": [{"shape": "disk", "radius": 0.03, "group": "disk"}]}
-  ],
-  "interactions": [{"groups": ["slab_bottom", "floor"], "law": "rough"}, {"groups": ["disk", "slab_top"], "law": "rough"}],
+  const SceneRun run = run_scene("global_elastic", slab_and_disks_scene(0.12, R"(,
   "solver": )" + solver("w") + R"(,
-  "export_problems": {"steps": [100], "kind": "global"},
-  "output": {"file": "out.h5", "every": 1}
-})");
+  "export_problems": {"steps": [100], "kind": "global"})"));
   ASSERT_EQ(run.result.code, 0) << run.result.err;
   const moreau::fclib::Problem p = moreau::fclib::read(run.problem(100));
   ASSERT_TRUE(p.global);
