@@ -29,6 +29,7 @@
 #include <moreau/state.hpp>
 #include <optional>
 #include <string>
+#include <utility>
 #include <vector>
 
 #include "display.hpp"
@@ -70,6 +71,24 @@ struct OutputHeader {
   std::shared_ptr<const DisplayMeshes> display;
 };
 
+/// A named dataset added to a frame by a producer other than the State (analyses): written
+/// at /frames/NNNNNNNN/<group path>/<name>; `name` may hold '/' (subgroups). Numbers
+/// (`values`, row-major in `shape`; empty shape: a scalar) or strings (1-D).
+struct FrameDataset {
+  std::string name;
+  std::vector<std::size_t> shape;
+  std::vector<double> values;
+  std::vector<std::string> strings;
+  std::string units;  ///< the dataset's `units` attribute, if not empty
+};
+
+/// A group of such datasets (e.g. "analyses/stress"), with string attributes.
+struct FrameGroup {
+  std::string path;
+  std::vector<std::pair<std::string, std::string>> attributes;
+  std::vector<FrameDataset> datasets;
+};
+
 class OutputWriter {
  public:
   /// A new file (replacing any file at `path`). Unwritable path: InputError naming it.
@@ -81,7 +100,9 @@ class OutputWriter {
   /// Without close(), the frames written so far are still gathered into one file.
   ~OutputWriter();
 
-  void write_frame(long step, double time, const State& state, long solver_iterations, double solver_error);
+  /// `extra`: groups added to the frame (analyses), written after the State's sets.
+  void write_frame(long step, double time, const State& state, long solver_iterations, double solver_error,
+                   const std::vector<FrameGroup>& extra = {});
   void close();
 
   const std::string& path() const;

@@ -13,10 +13,12 @@
 #include <set>
 #include <sstream>
 
+#include "../analysis/analysis_build.hpp"
 #include "../contact/placement.hpp"
 #include "../run/console.hpp"
 #include "../text/did_you_mean.hpp"
 #include "display_build.hpp"
+#include "generate.hpp"
 #include "json_file.hpp"
 #include "scene_schema.hpp"
 #include "validate.hpp"
@@ -54,8 +56,6 @@ class SceneChecker {
     output_ = validate_object(top_.value("output", json::object()), scene_schema::output(), "/output", v);
     detection_ = validate_object(top_.value("detection", json::object()), scene_schema::detection(), "/detection", v,
                                  scene_schema::detection_plugin_keys());
-    if (top_.contains("generators") && top_["generators"].is_array() && !top_["generators"].empty())
-      errors_.emplace_back("/generators", "no body generator plugins are available yet: list the bodies in \"bodies\"");
 
     std::vector<std::string> scene_paths;
     if (top_.contains("plugin_paths") && top_["plugin_paths"].is_array())
@@ -74,6 +74,7 @@ class SceneChecker {
     check_interactions();
     check_plugin_list(Kind::force, "forces", forces_);
     check_plugin_list(Kind::hook, "hooks", hooks_);
+    check_analyses();
     if (!top_["solver"].empty() || has_interactions()) {
       solver_ = plugin_use(Kind::solver, top_["solver"], "/solver", "auto", {"on_failure"});
       const json& sv = top_["solver"];
@@ -251,6 +252,7 @@ class SceneChecker {
       ctx.state = &w->state;
       for (const auto& f : forces_) w->forces.push_back(reg.create<Force>(f.name, f.params, ctx, f.pointer));
       for (const auto& h : hooks_) w->hooks.push_back(reg.create<Hook>(h.name, h.params, ctx, h.pointer));
+      if (!analyses_.empty()) w->analyses = build_analyses(*w, reg, ctx, analyses_);
     } catch (const InputError& e) {
       throw e.with_file(file_.path);
     }
@@ -809,6 +811,19 @@ class SceneChecker {
     }
   }
 
+  /// `analyses`: each a plugin entry whose kernel keys (name, region, every) are checked
+  /// in kernel/analysis (docs/analyses.md).
+  void check_analyses() {
+    if (!top_["analyses"].is_array()) return;
+    const json& list = top_["analyses"];
+    for (std::size_t i = 0; i < list.size(); ++i) {
+      const std::string ptr = "/analyses/" + std::to_string(i);
+      PluginUse use = plugin_use(Kind::analysis, list[i], ptr, "", analysis_kernel_keys());
+      analyses_.push_back(AnalysisEntry{use.name, use.params, ptr, list[i]});
+    }
+    check_analysis_entries(analyses_, dim_, errors_);
+  }
+
   void check_plugin_list(Kind kind, const char* key, std::vector<PluginUse>& out) {
     if (!top_[key].is_array()) return;
     const json& list = top_[key];
@@ -842,6 +857,7 @@ class SceneChecker {
   std::map<std::pair<std::string, std::string>, std::pair<std::string, bool>> detector_uses_;
   bool stop_on_failure_ = false;
   std::vector<PluginUse> forces_, hooks_;
+  std::vector<AnalysisEntry> analyses_;
   std::optional<json> export_;  ///< validated `export_problems`, steps sorted and unique
 };
 
@@ -849,18 +865,26 @@ class SceneChecker {
 
 std::unique_ptr<World> build_world(const std::string& scene_path, const std::string& output_path) {
   JsonFile file = read_json_file(scene_path);
-  SceneChecker checker(file);
-  checker.check();
-  return checker.build(output_path);
+  const Generated generated = expand_generators(file);  // `generators`: bodies appended first
+  return generated.locate([&] {
+    SceneChecker checker(file);
+    checker.check();
+    return checker.build(output_path);
+  });
 }
 
-void check_scene(const std::string& scene_path) {
-  JsonFile file = read_json_file(scene_path);
-  SceneChecker checker(file);
-  checker.check();
-  // Then build it (nothing is written): plugins check what a schema cannot say, such as
-  // degenerate shapes or inconsistent masses, in their constructors.
-  checker.build("");
+void check_scene(JsonFile file) {
+  const Generated generated = expand_generators(file);
+  generated.locate([&] {
+    SceneChecker checker(file);
+    checker.check();
+    // Then build it (nothing is written): plugins check what a schema cannot say, such as
+    // degenerate shapes or inconsistent masses, in their constructors.
+    checker.build("");
+    return 0;
+  });
 }
+
+void check_scene(const std::string& scene_path) { check_scene(read_json_file(scene_path)); }
 
 }  // namespace moreau::kernel

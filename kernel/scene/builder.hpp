@@ -5,6 +5,7 @@
 #include <string>
 
 #include "../run/world.hpp"
+#include "json_file.hpp"
 
 namespace moreau::kernel {
 
@@ -15,5 +16,7 @@ std::unique_ptr<World> build_world(const std::string& scene_path, const std::str
 /// Validates and builds the scene without running or writing anything (what `moreau check`
 /// runs). Same errors as build_world.
 void check_scene(const std::string& scene_path);
+/// The same for a scene already read (e.g. one `moreau generate` expanded).
+void check_scene(JsonFile file);
 
 }  // namespace moreau::kernel

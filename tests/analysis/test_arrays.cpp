@@ -1,0 +1,198 @@
+// Regular arrays in a box (Dumont, Fortin & Ouafik 2010, §5.1, fig. 6): the normal forces
+// of the run, once at rest, equal the analytic statics to the solver's tolerance (1e-10,
+// relative to the weights: compared to 1e-8 of a grain's weight).
+//  - rectangular (square array of frictionless disks between walls): each column carries
+//    the weight above it; horizontal contacts carry nothing;
+//  - triangular (rows resting in the hollows of the row below, on a row of fixed disks):
+//    every disk has exactly two supports below (two disks, or a disk and a wall), so the
+//    statics are determinate, solved from the top row down;
+//  - cannonball, 3D with friction: the tetrahedral stack (3 + 1 spheres) is determinate:
+//    N = mg/3 on each upper contact, mg + N on the floor, and the friction that keeps each
+//    base sphere from rolling, t = N cos β / (1 + sin β); the square pyramid (4 + 1, the
+//    configs/cannonball_3d.json scene) is hyperstatic (a four-legged stool: how the top
+//    sphere shares its weight between the diagonals is not determined), and its
+//    determinate relations are checked: Σ N = mg, floor = mg + N_i, t_i = N_i cos β/(1 + sin β).
+#include <cmath>
+
+#include "analysis_run.hpp"
+
+using namespace moreau_test;
+
+namespace {
+
+/// Normal forces of the statics, solved from the top down: each moving body's load (its
+/// weight and the forces of the bodies above) is carried by its other contacts, with the
+/// least-norm split when there are more than the dimension (horizontal contacts then carry
+/// nothing, as by symmetry).
+std::vector<double> statics(const SceneRun& run, int d) {
+  const std::string fr = run.last();
+  const auto x = run.at(fr, "position");
+  const auto m = run.header("/bodies/mass");
+  const auto fixed = run.header("/bodies/fixed");
+  const auto B = run.at(fr, "contacts/bodies");
+  const auto N = run.at(fr, "contacts/normal");
+  const std::size_t nb = m.size(), nc = B.size() / 2;
+  std::vector<double> f(nc, NAN);
+  std::vector<std::size_t> order;
+  for (std::size_t b = 0; b < nb; ++b)
+    if (fixed[b] == 0) order.push_back(b);
+  std::sort(order.begin(), order.end(), [&](std::size_t a, std::size_t b) { return x[a * d + d - 1] > x[b * d + d - 1]; });
+  for (std::size_t b : order) {
+    std::vector<double> load(d, 0.0);
+    load[d - 1] = -9.81 * m[b];
+    std::vector<std::pair<std::size_t, std::vector<double>>> sup;
+    for (std::size_t c = 0; c < nc; ++c) {
+      const std::size_t i = static_cast<std::size_t>(B[2 * c]), j = static_cast<std::size_t>(B[2 * c + 1]);
+      if (i != b && j != b) continue;
+      const std::size_t o = i == b ? j : i;
+      std::vector<double> n(d);
+      for (int k = 0; k < d; ++k) n[k] = N[c * d + k] * (i == b ? 1.0 : -1.0);  // into b
+      if (fixed[o] == 0 && x[o * d + d - 1] > x[b * d + d - 1] + 1e-9) {
+        EXPECT_FALSE(std::isnan(f[c]));
+        for (int k = 0; k < d; ++k) load[k] += f[c] * n[k];
+      } else {
+        sup.emplace_back(c, n);
+      }
+    }
+    // Least-norm N with Σ N_s n_s = −load: N = Aᵀ (A Aᵀ)⁻¹ (−load), A = [n_s] (d × k).
+    double G[9] = {0}, rhs[3] = {0, 0, 0}, y[3] = {0, 0, 0};
+    for (const auto& s : sup)
+      for (int p = 0; p < d; ++p)
+        for (int q = 0; q < d; ++q) G[p * 3 + q] += s.second[p] * s.second[q];
+    for (int k = 0; k < d; ++k) rhs[k] = -load[k];
+    if (d == 2) {
+      const double det = G[0] * G[4] - G[1] * G[3];
+      y[0] = (rhs[0] * G[4] - G[1] * rhs[1]) / det;
+      y[1] = (G[0] * rhs[1] - G[3] * rhs[0]) / det;
+    } else {
+      ADD_FAILURE() << "3D statics: use the closed forms";
+    }
+    for (const auto& s : sup) {
+      double v = 0;
+      for (int k = 0; k < d; ++k) v += s.second[k] * y[k];
+      f[s.first] = v;
+    }
+  }
+  return f;
+}
+
+void expect_statics(const std::string& config, std::size_t contacts) {
+  json scene = read_config(config);
+  SceneRun run = run_json(config.substr(0, config.find('.')), scene);
+  ASSERT_FALSE(run.frames.empty());
+  const auto fn = run.at(run.last(), "contacts/normal_force");
+  ASSERT_EQ(fn.size(), contacts) << "the array's contacts";
+  const auto f = statics(run, 2);
+  const auto m = run.header("/bodies/mass");
+  const double W = 9.81 * *std::max_element(m.begin(), m.end());
+  double worst = 0;
+  for (std::size_t c = 0; c < fn.size(); ++c) {
+    ASSERT_FALSE(std::isnan(f[c])) << "contact " << c << " has no statics";
+    EXPECT_GE(f[c], -1e-12 * W) << "contact " << c << ": the statics need tension";
+    worst = std::max(worst, std::fabs(fn[c] - f[c]) / W);
+  }
+  std::printf("%s: %zu contacts, largest |f_n - statics| = %.2e of a grain's weight\n", config.c_str(), fn.size(), worst);
+  EXPECT_LT(worst, 1e-8);
+}
+
+}  // namespace
+
+TEST(Arrays, RectangularNormalForcesAreTheStatics) {
+  // 4 columns of 5 disks: 4 floor + 16 vertical + 15 horizontal + 10 wall contacts.
+  expect_statics("array_rectangular_2d.json", 45);
+}
+
+TEST(Arrays, TriangularNormalForcesAreTheStatics) {
+  // 5 moving rows on a fixed row of 5: 8 + 2·(4+4+4) supports + 2 per n-row at the walls.
+  expect_statics("array_triangular_2d.json", 44);
+}
+
+namespace {
+
+/// Normal force, tangential magnitude and the two bodies of each contact of the last frame.
+struct Contacts {
+  std::vector<int> a, b;
+  std::vector<double> fn, ft;
+};
+Contacts contacts_of(const SceneRun& run, int d) {
+  Contacts c;
+  const auto B = run.at(run.last(), "contacts/bodies");
+  const auto imp = run.at(run.last(), "contacts/impulse");
+  const double h = 1e-3;
+  for (std::size_t i = 0; i < B.size() / 2; ++i) {
+    c.a.push_back(static_cast<int>(B[2 * i]));
+    c.b.push_back(static_cast<int>(B[2 * i + 1]));
+    c.fn.push_back(imp[i * d] / h);
+    double t = 0;
+    for (int k = 1; k < d; ++k) t += imp[i * d + k] * imp[i * d + k];
+    c.ft.push_back(std::sqrt(t) / h);
+  }
+  return c;
+}
+
+}  // namespace
+
+TEST(Arrays, TetrahedralCannonballWithFriction) {
+  // Three spheres on the floor, apart by 1 %, one on top: elevation β of the upper contacts
+  // from cos β = (s/√3)/(2R).
+  const double R = 0.05, s = 2 * R * 1.01, rho = 7800;
+  const double m = rho * 4.0 / 3.0 * M_PI * R * R * R, W = m * 9.81;
+  const double c = s / std::sqrt(3.0) / (2 * R), sb = std::sqrt(1 - c * c);
+  const double h = s * std::sqrt(3.0) / 2;
+  json scene = json::parse(R"({"format": "moreau-scene/1", "dimension": 3,
+    "time": {"step": 1e-3, "duration": 0.02}, "gravity": [0, 0, -9.81],
+    "materials": {"iron": {"density": 7800}}, "laws": {"rough": {"type": "coulomb", "friction": 0.5}},
+    "bodies": [{"name": "floor", "fixed": true, "position": [0, 0, 0], "contactors": [{"shape": "plane", "group": "wall"}]}],
+    "interactions": [{"groups": ["ball", "ball"], "law": "rough"}, {"groups": ["ball", "wall"], "law": "rough"}],
+    "solver": {"type": "nlgs", "tolerance": 1e-10, "max_iterations": 20000},
+    "output": {"every": 10}})");
+  const double base[3][2] = {{0, 0}, {s, 0}, {s / 2, h}};
+  for (int i = 0; i < 3; ++i)
+    scene["bodies"].push_back({{"name", "b" + std::to_string(i)}, {"material", "iron"},
+                               {"position", {base[i][0], base[i][1], R}},
+                               {"contactors", {{{"shape", "sphere"}, {"radius", R}, {"group", "ball"}}}}});
+  scene["bodies"].push_back({{"name", "top"}, {"material", "iron"}, {"position", {s / 2, h / 3, R + 2 * R * sb}},
+                             {"contactors", {{{"shape", "sphere"}, {"radius", R}, {"group", "ball"}}}}});
+  SceneRun run = run_json("tetrahedral", scene);
+  ASSERT_FALSE(run.frames.empty());
+  const Contacts k = contacts_of(run, 3);
+  ASSERT_EQ(k.fn.size(), 6u);
+  const double t = W / 3 * c / (1 + sb);
+  double worst = 0;
+  for (std::size_t i = 0; i < k.fn.size(); ++i) {
+    const bool floor = k.a[i] == 0 || k.b[i] == 0;
+    worst = std::max({worst, std::fabs(k.fn[i] - (floor ? 4 * W / 3 : W / 3)) / W, std::fabs(k.ft[i] - t) / W});
+  }
+  std::printf("tetrahedral cannonball: N = mg/3 above, 4mg/3 on the floor, friction %.4f mg: worst error %.2e mg\n", t / W,
+              worst);
+  EXPECT_LT(worst, 1e-8);
+}
+
+TEST(Arrays, SquareCannonballDeterminateRelations) {
+  json scene = read_config("cannonball_3d.json");
+  SceneRun run = run_json("cannonball", scene);
+  ASSERT_FALSE(run.frames.empty());
+  const Contacts k = contacts_of(run, 3);
+  ASSERT_EQ(k.fn.size(), 8u);
+  const auto m = run.header("/bodies/mass");
+  const double W = 9.81 * m.back();
+  const double R = 0.05, s = 2 * R * 1.01, c = s / std::sqrt(2.0) / (2 * R), sb = std::sqrt(1 - c * c);
+  // The base spheres are bodies 5..8 (after the five walls), the top one is 9.
+  std::vector<double> upper(4, NAN), upper_t(4, NAN), floor(4, NAN), floor_t(4, NAN);
+  for (std::size_t i = 0; i < k.fn.size(); ++i) {
+    const int lo = std::min(k.a[i], k.b[i]), hi = std::max(k.a[i], k.b[i]);
+    if (hi == 9) upper[lo - 5] = k.fn[i], upper_t[lo - 5] = k.ft[i];
+    else floor[hi - 5] = k.fn[i], floor_t[hi - 5] = k.ft[i];
+  }
+  double sum = 0, worst = 0;
+  for (int i = 0; i < 4; ++i) {
+    sum += upper[i];
+    worst = std::max({worst, std::fabs(floor[i] - (W + upper[i])) / W, std::fabs(upper_t[i] - upper[i] * c / (1 + sb)) / W,
+                      std::fabs(floor_t[i] - upper_t[i]) / W});
+  }
+  // Diagonal pairs (lattice order (0,0), (1,0), (0,1), (1,1)) share alike.
+  worst = std::max({worst, std::fabs(sum - W) / W, std::fabs(upper[0] - upper[3]) / W, std::fabs(upper[1] - upper[2]) / W});
+  std::printf("square cannonball: upper normal forces %.4f %.4f %.4f %.4f mg (sum 1), worst error %.2e mg\n", upper[0] / W,
+              upper[1] / W, upper[2] / W, upper[3] / W, worst);
+  EXPECT_LT(worst, 1e-8);
+}
