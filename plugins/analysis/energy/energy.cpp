@@ -10,7 +10,8 @@
 //   W_boundary += −Σ p_s · w̄_s over the contacts' sides s on fixed or driven bodies (their
 //                 material-point velocity w̄ at the contact): the work walls and pistons do
 //   W_ext      += h (F · v̄ + τ · ω̄)  (force plugins)
-//   W_θ        += h (½ − θ) m g · (v⁺ − v⁻)  (the θ-scheme's own work; 0 for θ = ½)
+//   W_θ        += h (½ − θ) m g · (v⁺ − v⁻)  (the θ-scheme's own work; 0 for θ = ½; it telescopes
+//                 to h (½ − θ) Σ m g · (v − v₀): a boundary term, not a dissipation)
 // In 2D, and in 3D for bodies with isotropic inertia (spheres), this is the θ-scheme's
 // discrete energy identity: the balance closes to rounding whatever the solver's error.
 // In 3D the gyroscopic term of other bodies adds an O(h) residual, reported in
