@@ -9,7 +9,8 @@ NAME is an analysis's name (its group /frames/N/analyses/NAME); what is drawn de
 its type:
   stress        NAME_time.png: the components of the total stress and of its contact,
                 gravity and inertia terms over time; with a profile, NAME_profile.png:
-                velocity and stress across the slices, averaged over the window
+                velocity and stress across the slices, averaged over the window (over
+                every step of it when the analysis has `average`)
   walls         NAME_forces.png: the resultant force on each body over time; with a
                 profile, NAME_janssen.png: the wall normal stress against depth (averaged
                 over the walls and the window) with the fitted Janssen curve
@@ -116,9 +117,12 @@ def plot_stress(f, name, frames, args, out):
     if prof is None:
         return
     sel, axis, pos = prof
-    vel = np.nanmean(values(sel, name, "profile/velocity"), axis=0)
-    tot = np.nanmean(values(sel, name, "profile/total"), axis=0)
-    ine = np.nanmean(values(sel, name, "profile/inertia"), axis=0)
+    # With `average`, each frame holds the mean over the steps since the previous one: the
+    # mean over the window's frames is then the mean over all its steps.
+    src = "average/profile" if "average/profile" in sel[-1][1]["analyses"][name] else "profile"
+    vel = np.nanmean(values(sel, name, src + "/velocity"), axis=0)
+    tot = np.nanmean(values(sel, name, src + "/total"), axis=0)
+    ine = np.nanmean(values(sel, name, src + "/inertia"), axis=0)
     fig, (a0, a1) = plt.subplots(1, 2, figsize=(9, 4), sharey=True)
     for k, c in enumerate("xyz"[:d]):
         a0.plot(vel[:, k], pos, "o-", label=f"$v_{c}$")
@@ -133,7 +137,8 @@ def plot_stress(f, name, frames, args, out):
     a1.set_xlabel("stress (Pa)")
     a1.legend(fontsize=7)
     a1.grid(alpha=0.3)
-    fig.suptitle(f"{name}: profile over {len(sel)} frame(s), t = {sel[0][0]:.3g} to {sel[-1][0]:.3g} s")
+    over = "every step" if src.startswith("average") else f"{len(sel)} frame(s)"
+    fig.suptitle(f"{name}: profile averaged over {over}, t = {sel[0][0]:.3g} to {sel[-1][0]:.3g} s")
     save(fig, out, f"{name}_profile.png")
 
 

@@ -105,8 +105,8 @@ class Stress : public Analysis {
         .gt(0)
         .optional();
     profile_param(s, "also the stress, mean velocity and solid fraction in slices of the region's box");
-    s.boolean("average", "also the stress averaged over every step since the frame this analysis last wrote "
-                         "(impacts between frames included): datasets average/...")
+    s.boolean("average", "also the stress (and the profile) averaged over every step since the frame this analysis "
+                         "last wrote (impacts between frames included): datasets average/...")
         .fallback(false);
     return s;
   }
@@ -133,6 +133,23 @@ class Stress : public Analysis {
     const Tensor* now[4] = {&t.contact, &t.gravity, &t.inertia, &t.external};
     for (int k = 0; k < 4; ++k)
       for (std::size_t i = 0; i < now[k]->size(); ++i) (*sums[k])[i] += (w.V > 0 ? (*now[k])[i] / w.V : 0.0) * f.h;
+    if (bins_.on) {
+      const Slices sl = slices(f, w.in, w.lo, w.hi);
+      std::vector<double> c, g, i, e;
+      std::vector<double>* t4[4] = {&c, &g, &i, &e};
+      std::vector<double> vel;
+      for (std::size_t k = 0; k < sl.terms.size(); ++k) {
+        slice_stress(sl.terms[k], sl.V[k], t4);
+        for (int j = 0; j < f.dimension; ++j)
+          vel.push_back(sl.terms[k].mass > 0 ? sl.terms[k].momentum[static_cast<std::size_t>(j)] / sl.terms[k].mass : 0.0);
+      }
+      for (int k = 0; k < 4; ++k) {
+        profile_sum_[k].resize(t4[k]->size(), 0.0);
+        for (std::size_t q = 0; q < t4[k]->size(); ++q) profile_sum_[k][q] += (*t4[k])[q] * f.h;
+      }
+      profile_velocity_sum_.resize(vel.size(), 0.0);
+      for (std::size_t q = 0; q < vel.size(); ++q) profile_velocity_sum_[q] += vel[q] * f.h;
+    }
     summed_time_ += f.h;
     ++summed_steps_;
   }
@@ -166,6 +183,19 @@ class Stress : public Analysis {
       out.add("average/external", {n, n}, mean(sum_.external), "Pa");
       out.scalar("average/duration", T, "s");
       out.scalar("average/steps", static_cast<double>(summed_steps_));
+      if (bins_.on && !profile_velocity_sum_.empty()) {
+        std::vector<double> m4[4];
+        const std::vector<double>* c4[4];
+        for (int k = 0; k < 4; ++k) {
+          for (double x : profile_sum_[k]) m4[k].push_back(x / T);
+          c4[k] = &m4[k];
+        }
+        std::vector<double> vel;
+        for (double x : profile_velocity_sum_) vel.push_back(x / T);
+        write_profile(out, "average/", d, bins_.count, c4, vel);
+      }
+      for (auto& p : profile_sum_) p.clear();
+      profile_velocity_sum_.clear();
       sum_ = Terms(d);
       summed_time_ = 0;
       summed_steps_ = 0;
@@ -196,47 +226,74 @@ class Stress : public Analysis {
     out.add(prefix + "velocity", {n}, v, "m/s");
   }
 
+  /// The slices of the region's box along the profile's axis: each one's terms (moments
+  /// about its own centre) and volume.
+  struct Slices {
+    double a = 0, b = 0;
+    std::vector<Terms> terms;
+    std::vector<double> V;
+  };
+  Slices slices(const AnalysisFrame& f, const std::vector<char>& in, const double lo[3], const double hi[3]) const {
+    const int d = f.dimension, n = bins_.count;
+    Slices s;
+    bins_.edges(lo, hi, s.a, s.b);
+    std::vector<std::vector<char>> member(static_cast<std::size_t>(n), std::vector<char>(in.size(), 0));
+    for (std::size_t i = 0; i < in.size(); ++i) {
+      if (!in[i]) continue;
+      const int k = bins_.bin(f.bodies.position[i * d + bins_.axis], s.a, s.b);
+      if (k >= 0) member[static_cast<std::size_t>(k)][i] = 1;
+    }
+    for (int k = 0; k < n; ++k) {
+      double slo[3] = {lo[0], lo[1], lo[2]}, shi[3] = {hi[0], hi[1], hi[2]};
+      slo[bins_.axis] = s.a + k * (s.b - s.a) / n;
+      shi[bins_.axis] = s.a + (k + 1) * (s.b - s.a) / n;
+      double o[3] = {0, 0, 0};
+      for (int j = 0; j < d; ++j) o[j] = 0.5 * (slo[j] + shi[j]);
+      s.terms.push_back(terms(f, member[static_cast<std::size_t>(k)], o));
+      s.V.push_back(f.after_step ? box_volume(slo, shi, d) : NAN);
+    }
+    return s;
+  }
+
+  /// Per slice, row-major: the four terms (contact, gravity, inertia, external) over V.
+  static void slice_stress(const Terms& t, double V, std::vector<double>* out[4]) {
+    const Tensor* term[4] = {&t.contact, &t.gravity, &t.inertia, &t.external};
+    for (int k = 0; k < 4; ++k)
+      for (double x : *term[k]) out[k]->push_back(x / V);
+  }
+
+  /// Writes `prefix` + profile/... from per-slice stresses (4 terms), velocities and the rest.
+  static void write_profile(AnalysisResult& out, const std::string& prefix, int d, int n,
+                            const std::vector<double>* terms4[4], const std::vector<double>& velocity) {
+    const std::size_t ds = static_cast<std::size_t>(d), nn = static_cast<std::size_t>(n);
+    std::vector<double> total(terms4[0]->size(), 0.0);
+    for (int k = 0; k < 4; ++k)
+      for (std::size_t i = 0; i < total.size(); ++i) total[i] += (*terms4[k])[i];
+    out.add(prefix + "profile/total", {nn, ds, ds}, total, "Pa");
+    const char* names[4] = {"contact", "gravity", "inertia", "external"};
+    for (int k = 0; k < 4; ++k) out.add(prefix + "profile/" + names[k], {nn, ds, ds}, *terms4[k], "Pa");
+    out.add(prefix + "profile/velocity", {nn, ds}, velocity, "m/s");
+  }
+
   void profile(const AnalysisFrame& f, const std::vector<char>& in, const double lo[3], const double hi[3],
                AnalysisResult& out) const {
     const int d = f.dimension, n = bins_.count;
-    double a, b;
-    bins_.edges(lo, hi, a, b);
-    std::vector<std::vector<char>> slice(static_cast<std::size_t>(n), std::vector<char>(in.size(), 0));
-    for (std::size_t i = 0; i < in.size(); ++i) {
-      if (!in[i]) continue;
-      const int k = bins_.bin(f.bodies.position[i * d + bins_.axis], a, b);
-      if (k >= 0) slice[static_cast<std::size_t>(k)][i] = 1;
-    }
-    const std::size_t dd = static_cast<std::size_t>(d * d), nn = static_cast<std::size_t>(n);
-    std::vector<double> total, contact, gravity, inertia, external, velocity, solid, count;
+    const Slices s = slices(f, in, lo, hi);
+    std::vector<double> c, g, i, e, velocity, solid, count;
+    std::vector<double>* t4[4] = {&c, &g, &i, &e};
     for (int k = 0; k < n; ++k) {
-      double slo[3] = {lo[0], lo[1], lo[2]}, shi[3] = {hi[0], hi[1], hi[2]};
-      slo[bins_.axis] = a + k * (b - a) / n;
-      shi[bins_.axis] = a + (k + 1) * (b - a) / n;
-      double o[3] = {0, 0, 0};
-      for (int j = 0; j < d; ++j) o[j] = 0.5 * (slo[j] + shi[j]);
-      const Terms t = terms(f, slice[static_cast<std::size_t>(k)], o);
-      const double V = f.after_step ? box_volume(slo, shi, d) : NAN;
-      for (std::size_t i = 0; i < dd; ++i) {
-        total.push_back((t.contact[i] + t.gravity[i] + t.inertia[i] + t.external[i]) / V);
-        contact.push_back(t.contact[i] / V);
-        gravity.push_back(t.gravity[i] / V);
-        inertia.push_back(t.inertia[i] / V);
-        external.push_back(t.external[i] / V);
-      }
+      const Terms& t = s.terms[static_cast<std::size_t>(k)];
+      const double V = s.V[static_cast<std::size_t>(k)];
+      slice_stress(t, V, t4);
       for (int j = 0; j < d; ++j) velocity.push_back(t.mass > 0 ? t.momentum[static_cast<std::size_t>(j)] / t.mass : 0.0);
       solid.push_back(t.volume_solid / V);
       count.push_back(static_cast<double>(t.bodies));
     }
-    const std::size_t ds = static_cast<std::size_t>(d);
-    out.add("profile/position", {nn}, bin_centres(n, a, b), "m");
+    const std::size_t nn = static_cast<std::size_t>(n);
+    out.add("profile/position", {nn}, bin_centres(n, s.a, s.b), "m");
     out.scalar("profile/axis", bins_.axis);
-    out.add("profile/total", {nn, ds, ds}, total, "Pa");
-    out.add("profile/contact", {nn, ds, ds}, contact, "Pa");
-    out.add("profile/gravity", {nn, ds, ds}, gravity, "Pa");
-    out.add("profile/inertia", {nn, ds, ds}, inertia, "Pa");
-    out.add("profile/external", {nn, ds, ds}, external, "Pa");
-    out.add("profile/velocity", {nn, ds}, velocity, "m/s");
+    const std::vector<double>* c4[4] = {&c, &g, &i, &e};
+    write_profile(out, "", d, n, c4, velocity);
     out.add("profile/solid_fraction", {nn}, solid);
     out.add("profile/bodies", {nn}, count);
   }
@@ -260,6 +317,7 @@ class Stress : public Analysis {
   int dim_;
   bool average_ = false;
   Terms sum_{3};  // Σ·h per term since the last frame written (average)
+  std::vector<double> profile_sum_[4], profile_velocity_sum_;  // per slice, Σ·h (average with a profile)
   double summed_time_ = 0;
   long summed_steps_ = 0;
   bool has_origin_ = false;
