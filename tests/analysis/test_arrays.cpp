@@ -196,3 +196,61 @@ TEST(Arrays, SquareCannonballDeterminateRelations) {
               upper[1] / W, upper[2] / W, upper[3] / W, worst);
   EXPECT_LT(worst, 1e-8);
 }
+
+// The analyses of the same pile against its determinate statics (tolerance: the solver's
+// 1e-10, compared at 1e-8 of the pile's weight or of its stress scale):
+//  - walls: the force on the floor is the five weights, 5mg, straight down;
+//  - polarization: all 8 contacts closed and sticking (t/N = cos β/(1 + sin β) = 0.41 <
+//    μ = 0.5); the upper contacts' mean mobilisation is that ratio over μ, whatever the
+//    hyperstatic split; the floor's is Σ_i t_i / (μ N_floor,i) / 4 from the contacts;
+//  - stress of the whole pile (V the box around it): Σ_zz V = −mg Σ_p z_p (the floor's
+//    contacts are at z = 0), Σ_xx V = Σ_yy V = −(s/(2√2)) Σ_i t_i = −(s/(2√2)) mg cos β/(1 +
+//    sin β) (the floor's friction on the base spheres, at ±s/2, pointing to the axis), and
+//    Σ symmetric.
+TEST(Arrays, AnalysesOfTheSquareCannonball) {
+  SceneRun run = run_json("cannonball_analyses", read_config("cannonball_3d.json"));
+  ASSERT_FALSE(run.frames.empty());
+  const std::string fr = run.last();
+  const auto m = run.header("/bodies/mass");
+  const double W = 9.81 * m.back(), mu = 0.5;
+  const double R = 0.05, s = 2 * R * 1.01, c = s / std::sqrt(2.0) / (2 * R), sb = std::sqrt(1 - c * c);
+  const double ratio = c / (1 + sb);
+
+  const auto floor = run.at(fr, "analyses/walls/force");
+  ASSERT_EQ(floor.size(), 3u);
+  EXPECT_NEAR(floor[2], -5 * W, 1e-8 * W);
+  EXPECT_NEAR(floor[0], 0, 1e-8 * W);
+  EXPECT_NEAR(floor[1], 0, 1e-8 * W);
+
+  // Pairs in the scene's order: ball-ball, ball-wall; columns open, sticking, sliding, moving, total.
+  const auto counts = run.at(fr, "analyses/polarization/counts");
+  const auto mob = run.at(fr, "analyses/polarization/mobilisation_mean");
+  ASSERT_EQ(counts.size(), 10u);
+  const std::vector<double> expect_counts{0, 4, 0, 0, 4, 0, 4, 0, 0, 4};
+  EXPECT_EQ(counts, expect_counts);
+  EXPECT_NEAR(mob[0], ratio / mu, 1e-8);
+  const Contacts k = contacts_of(run, 3);
+  double floor_mob = 0;
+  for (std::size_t i = 0; i < k.fn.size(); ++i)
+    if (std::max(k.a[i], k.b[i]) != 9) floor_mob += k.ft[i] / (mu * k.fn[i]) / 4;
+  EXPECT_NEAR(mob[1], floor_mob, 1e-12);
+
+  const auto S = run.at(fr, "analyses/stress/total");
+  const double V = run.scalar(fr, "analyses/stress/volume");
+  const auto x = run.at(fr, "position");
+  double zsum = 0;
+  for (std::size_t b = 5; b < 10; ++b) zsum += x[b * 3 + 2];
+  const double scale = W * zsum / V;
+  const double lateral = -s / (2 * std::sqrt(2.0)) * W * ratio / V;
+  std::printf("square cannonball: floor force %.1e mg from -5 mg; mobilisation above %.6f (statics %.6f), on the floor %.6f; "
+              "stress zz %.6g Pa (statics %.6g), xx %.6g yy %.6g (statics %.6g), errors %.1e %.1e %.1e of |zz|, "
+              "|xy - yx| %.1e\n",
+              std::fabs(floor[2] + 5 * W) / W, mob[0], ratio / mu, mob[1], S[8], -scale, S[0], S[4], lateral,
+              std::fabs(S[8] + scale) / scale, std::fabs(S[0] - lateral) / scale, std::fabs(S[4] - lateral) / scale,
+              std::fabs(S[1] - S[3]));
+  EXPECT_NEAR(S[8], -scale, 1e-8 * scale);
+  EXPECT_NEAR(S[0], lateral, 1e-8 * scale);
+  EXPECT_NEAR(S[4], lateral, 1e-8 * scale);
+  for (int i = 0; i < 3; ++i)
+    for (int j = 0; j < i; ++j) EXPECT_NEAR(S[i * 3 + j], S[j * 3 + i], 1e-12 * scale);
+}
