@@ -4,6 +4,8 @@
 // Σ (force on the wall · axis) / (Δ·width), the mean mobilisation ‖r_t‖/(μ r_n) and the
 // share of contacts on the Coulomb cone's boundary. `surface` is the top of the sample
 // along the axis (highest centre + bounding radius), to measure depths from.
+// With `average`, the resultants are also averaged over every step since the last frame
+// written (a piston's load in a flow, impacts included).
 #include <analysis_tools.hpp>
 #include <cmath>
 #include <moreau/analysis.hpp>
@@ -22,11 +24,15 @@ class Walls : public Analysis {
     profile_param(s, "wall stresses in bins along an axis; 3D also needs \"width\", the wall's extent across the "
                      "axis (m, e.g. a cylinder's perimeter)");
     s.number("cone_tolerance", "a contact is on the cone's boundary when |r_t| >= (1 - tol) mu r_n").min(0).lt(1).fallback(1e-3);
+    s.boolean("average", "also the force and torque averaged over every step since the frame this analysis last wrote "
+                         "(impacts between frames included): datasets average/...")
+        .fallback(false);
     return s;
   }
   static constexpr const char* doc = "force and torque on chosen bodies, wall normal and shear stress profile along an axis";
 
-  Walls(const Params& p, const BuildContext& ctx) : dim_(ctx.dimension), tol_(p.number("cone_tolerance")) {
+  Walls(const Params& p, const BuildContext& ctx)
+      : dim_(ctx.dimension), tol_(p.number("cone_tolerance")), average_(p.boolean("average")) {
     names_json_ = p.raw("bodies");
     names_pointer_ = p.pointer("bodies");
     bins_ = Bins::parse(p, "profile", dim_, {"width"});
@@ -58,21 +64,85 @@ class Walls : public Analysis {
     }
   }
 
+  bool every_step() const override { return average_; }
+
+  void step(const AnalysisFrame& f, const Region& region) override {
+    const Loads l = loads(f, region, false);
+    sum_force_.resize(l.force.size(), 0.0);
+    sum_torque_.resize(l.torque.size(), 0.0);
+    for (std::size_t i = 0; i < l.force.size(); ++i) sum_force_[i] += l.force[i] * f.h;
+    for (std::size_t i = 0; i < l.torque.size(); ++i) sum_torque_[i] += l.torque[i] * f.h;
+    summed_time_ += f.h;
+    ++summed_steps_;
+  }
+
   void run(const AnalysisFrame& f, const Region& region, AnalysisResult& out) override {
+    const int d = f.dimension, r = d == 2 ? 1 : 3;
+    const std::size_t nw = index_.size(), ds = static_cast<std::size_t>(d), rs = static_cast<std::size_t>(r);
+    const Loads l = loads(f, region, bins_.on);
+    out.strings("bodies", names_);
+    out.add("force", {nw, ds}, l.force, d == 2 ? "N/m" : "N");
+    out.add("torque", {nw, rs}, l.torque, d == 2 ? "N" : "N m");
+    out.add("contacts", {nw}, l.count);
+    if (average_) {
+      const double T = summed_time_;
+      std::vector<double> mf(nw * ds, NAN), mt(nw * rs, NAN);
+      for (std::size_t i = 0; T > 0 && i < mf.size(); ++i) mf[i] = sum_force_[i] / T;
+      for (std::size_t i = 0; T > 0 && i < mt.size(); ++i) mt[i] = sum_torque_[i] / T;
+      out.add("average/force", {nw, ds}, mf, d == 2 ? "N/m" : "N");
+      out.add("average/torque", {nw, rs}, mt, d == 2 ? "N" : "N m");
+      out.scalar("average/duration", T, "s");
+      out.scalar("average/steps", static_cast<double>(summed_steps_));
+      sum_force_.clear();
+      sum_torque_.clear();
+      summed_time_ = 0;
+      summed_steps_ = 0;
+    }
+    if (!bins_.on) return;
+    const std::size_t nbins = static_cast<std::size_t>(bins_.count);
+    // The top of the sample along the axis: depths are measured from it.
+    double top = -INFINITY;
+    for (std::size_t i = 0; i < f.bodies.count; ++i)
+      if (f.bodies.sample[i] && std::isfinite(f.bodies.radius[i]))
+        top = std::max(top, f.bodies.position[i * d + bins_.axis] + f.bodies.radius[i]);
+    out.scalar("profile/axis", bins_.axis);
+    out.scalar("profile/surface", std::isfinite(top) ? top : 0.0, "m");
+    out.add("profile/position", {nbins}, bin_centres(bins_.count, l.a, l.b), "m");
+    out.add("profile/normal", {nw, nbins}, l.normal, "Pa");
+    out.add("profile/shear", {nw, nbins}, l.shear, "Pa");
+    out.add("profile/mobilisation", {nw, nbins}, l.mob);
+    out.add("profile/sliding_share", {nw, nbins}, l.cone);
+    out.add("profile/contacts", {nw, nbins}, l.nbin);
+  }
+
+ private:
+  /// Per wall: resultant force [nw×d], torque [nw×r] and contacts [nw]; with `profile`, per
+  /// wall and bin [nw×n]: the stresses, mean mobilisation and share on the cone.
+  struct Loads {
+    std::vector<double> force, torque, count, normal, shear, mob, cone, nbin;
+    double a = 0, b = 0;
+  };
+
+  Loads loads(const AnalysisFrame& f, const Region& region, bool profile) const {
     const int d = f.dimension, r = d == 2 ? 1 : 3;
     const std::size_t nw = index_.size();
     std::vector<int> wall_of(f.bodies.count, -1);
     for (std::size_t w = 0; w < nw; ++w) wall_of[static_cast<std::size_t>(index_[w])] = static_cast<int>(w);
-    std::vector<double> force(nw * d, 0.0), torque(nw * r, 0.0), count(nw, 0.0);
+    Loads l;
+    std::vector<double>&force = l.force, &torque = l.torque, &count = l.count;
+    force.assign(nw * d, 0.0);
+    torque.assign(nw * r, 0.0);
+    count.assign(nw, 0.0);
     const auto in = contacts_in(f, region);
     double lo[3], hi[3];
     region_box(f, region, lo, hi);
-    double a = 0, b = 0;
-    if (bins_.on) bins_.edges(lo, hi, a, b);
-    const std::size_t nbins = bins_.on ? static_cast<std::size_t>(bins_.count) : 0;
+    double &a = l.a, &b = l.b;
+    if (profile) bins_.edges(lo, hi, a, b);
+    const std::size_t nbins = profile ? static_cast<std::size_t>(bins_.count) : 0;
     // Per wall and bin.
     const std::size_t nwb = nw * nbins;
-    std::vector<double> normal(nwb, 0.0), shear(nwb, 0.0), mob(nwb, 0.0), cone(nwb, 0.0), nbin(nwb, 0.0);
+    for (auto* v : {&l.normal, &l.shear, &l.mob, &l.cone, &l.nbin}) v->assign(nwb, 0.0);
+    std::vector<double>&normal = l.normal, &shear = l.shear, &mob = l.mob, &cone = l.cone, &nbin = l.nbin;
     for (std::size_t c = 0; c < f.contacts.count; ++c) {
       if (!in[c]) continue;
       for (int s = 0; s < 2; ++s) {
@@ -95,7 +165,7 @@ class Walls : public Analysis {
           torque[w * 3 + 2] += sign * (arm[0] * fc[1] - arm[1] * fc[0]);
         }
         count[static_cast<std::size_t>(w)] += 1;
-        if (!bins_.on) continue;
+        if (!profile) continue;
         const int k = bins_.bin(f.contacts.point[c * d + bins_.axis], a, b);
         if (k < 0) continue;
         const std::size_t kk = static_cast<std::size_t>(w) * nbins + static_cast<std::size_t>(k);
@@ -110,32 +180,17 @@ class Walls : public Analysis {
         }
       }
     }
-    const std::size_t ds = static_cast<std::size_t>(d), rs = static_cast<std::size_t>(r);
-    out.strings("bodies", names_);
-    out.add("force", {nw, ds}, force, d == 2 ? "N/m" : "N");
-    out.add("torque", {nw, rs}, torque, d == 2 ? "N" : "N m");
-    out.add("contacts", {nw}, count);
-    if (!bins_.on) return;
     for (std::size_t k = 0; k < nwb; ++k)
       if (nbin[k] > 0) mob[k] /= nbin[k], cone[k] /= nbin[k];
-    // The top of the sample along the axis: depths are measured from it.
-    double top = -INFINITY;
-    for (std::size_t i = 0; i < f.bodies.count; ++i)
-      if (f.bodies.sample[i] && std::isfinite(f.bodies.radius[i]))
-        top = std::max(top, f.bodies.position[i * d + bins_.axis] + f.bodies.radius[i]);
-    out.scalar("profile/axis", bins_.axis);
-    out.scalar("profile/surface", std::isfinite(top) ? top : 0.0, "m");
-    out.add("profile/position", {nbins}, bin_centres(bins_.count, a, b), "m");
-    out.add("profile/normal", {nw, nbins}, normal, "Pa");
-    out.add("profile/shear", {nw, nbins}, shear, "Pa");
-    out.add("profile/mobilisation", {nw, nbins}, mob);
-    out.add("profile/sliding_share", {nw, nbins}, cone);
-    out.add("profile/contacts", {nw, nbins}, nbin);
+    return l;
   }
 
- private:
   int dim_;
   double tol_;
+  bool average_ = false;
+  std::vector<double> sum_force_, sum_torque_;  // force·h, torque·h per wall since the last frame written (average)
+  double summed_time_ = 0;
+  long summed_steps_ = 0;
   double width_ = 1;  // 2D: per unit thickness
   nlohmann::json names_json_;
   std::string names_pointer_;
