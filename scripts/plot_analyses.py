@@ -156,24 +156,17 @@ def wall_friction(f, wall_indices):
     return None
 
 
-def janssen_fit(z, s):
-    """sigma(z) = A (1 - exp(-z/l)): least squares, A linear, l by a log scan then refined."""
-    best = None
-    for scale in (np.logspace(-4, 2, 600),):
-        for l in scale:
-            fz = 1 - np.exp(-z / l)
-            A = (s @ fz) / (fz @ fz)
-            r = ((s - A * fz) ** 2).sum()
-            if best is None or r < best[0]:
-                best = (r, A, l)
-    r, A, l = best
-    for l2 in np.linspace(0.9 * l, 1.1 * l, 400):
-        fz = 1 - np.exp(-z / l2)
-        A2 = (s @ fz) / (fz @ fz)
-        r2 = ((s - A2 * fz) ** 2).sum()
-        if r2 < r:
-            r, A, l = r2, A2, l2
-    return A, l
+def janssen_fit(z, s, gamma=None):
+    """sigma(z) = A (1 - exp(-z/l)), least squares: A linear, l by a log scan then refined.
+    With gamma (the unit weight, N/m3) Janssen's own form A = gamma l: l alone is fitted."""
+    def fit(l):
+        fz = 1 - np.exp(-z / l)
+        A = gamma * l if gamma else (s @ fz) / (fz @ fz)
+        return ((s - A * fz) ** 2).sum(), A, l
+
+    best = min((fit(l) for l in np.logspace(-4, 2, 600)), key=lambda x: x[0])
+    best = min([best] + [fit(l) for l in np.linspace(0.9 * best[2], 1.1 * best[2], 400)], key=lambda x: x[0])
+    return best[1], best[2]
 
 
 def plot_walls(f, name, frames, args, out):
@@ -243,23 +236,30 @@ def plot_walls(f, name, frames, args, out):
         print(f"Janssen fit to the wall normal stress: A = {A:.4g} Pa, l = {l:.4g} m, R_h = {rh:.4g} m, "
               f"mu = {mu:g}: lambda = {lam:.3f}")
         if vertical is not None:
-            Av, lv = janssen_fit(z[ok], vertical[ok])
+            # Janssen's sigma_zz = gamma l (1 - exp(-z/l)), l = R_h/(mu lambda), with the
+            # sample's own unit weight gamma: one parameter, lambda.
+            gamma = unit_weight(f, sel[-1][1], axis, surface, rh)
+            Av, lv = janssen_fit(z[ok], vertical[ok], gamma)
             lam_v = rh / (mu * lv)
+            rms = np.sqrt(np.mean((vertical[ok] - Av * (1 - np.exp(-z[ok] / lv))) ** 2))
             a0.plot(vertical[ok], z[ok], "^", color="tab:green", label=r"vertical stress $\sigma_{zz}$ (stress analysis)")
             a0.plot(Av * (1 - np.exp(-zz / lv)), zz, "-", color="tab:green",
-                    label=r"Janssen fit to $\sigma_{zz}$: $\lambda$ = %.2f" % lam_v)
-            a0.plot(lam_v * Av * (1 - np.exp(-zz / lv)), zz, "--", color="tab:green",
-                    label=r"$\lambda \sigma_{zz}$, the wall stress it predicts")
+                    label=r"Janssen fit to $\sigma_{zz}$ (sample's $\gamma$): $\lambda$ = %.2f" % lam_v)
             ratio = normal[ok].sum() / vertical[ok].sum()
             mu_eff = -shear[ok].sum() / normal[ok].sum()
-            print(f"Janssen fit to the vertical stress: A = {Av:.4g} Pa, l = {lv:.4g} m: lambda = {lam_v:.3f} with "
-                  f"mu = {mu:g}, unit weight A/l = {Av / lv:.4g} N/m3")
+            # The wall stress it predicts, with the wall friction the sample mobilises.
+            lam_mob = rh / (mu_eff * lv) if mu_eff > 0 else np.nan
+            a0.plot(lam_mob * Av * (1 - np.exp(-zz / lv)), zz, "--", color="tab:green",
+                    label=r"$\lambda \sigma_{zz}$, $\lambda = R_h/(\mu_{mob}\ell)$ = %.2f: the wall stress it predicts"
+                    % lam_mob)
+            a0.plot(gamma * zz, zz, ":", color="gray", label=r"hydrostatic $\gamma z$")
+            print(f"unit weight of the sample: {gamma:.4g} N/m3 (its weight over its volume below the surface)")
+            print(f"Janssen fit to the vertical stress with that unit weight: l = {lv:.4g} m, saturation gamma l = "
+                  f"{Av:.4g} Pa: lambda = {lam_v:.3f} with mu = {mu:g}; rms residual {rms:.4g} Pa "
+                  f"({rms / vertical[ok].max():.3f} of the largest)")
             print(f"measured: lambda = sum(sigma_w) / sum(sigma_zz) = {ratio:.3f}; wall friction mobilised "
                   f"sum(tau_w) / sum(sigma_w) = {mu_eff:.3f}, with which the vertical fit gives lambda = "
-                  f"{rh / (mu_eff * lv):.3f}")
-            gamma = unit_weight(f, sel[-1][1], axis, surface, rh)
-            if gamma:
-                print(f"unit weight of the sample: {gamma:.4g} N/m3 (its weight over its volume below the surface)")
+                  f"{lam_mob:.3f}")
     a0.invert_yaxis()
     a0.set_xlabel("stress (Pa)")
     a0.set_ylabel("depth below the surface z (m)")
