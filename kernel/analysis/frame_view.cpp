@@ -1,5 +1,6 @@
 #include "frame_view.hpp"
 
+#include <algorithm>
 #include <cmath>
 #include <limits>
 #include <moreau/contact_fields.hpp>
@@ -48,16 +49,30 @@ FrameView::FrameView(const World& w) {
     double pose[7], lo[3], hi[3];
     compose_pose(d, body_pose, c.placement, pose);
     c.shape->bounds(d, Pose{pose, pose + 3}, lo, hi);
+    // The farthest point from the centre, from below: the extent along each axis (exact
+    // for disks and spheres) and the display mesh's vertices placed in the body (the
+    // corners of polygons and polyhedra). The bounding box's corner would overestimate a
+    // disk's by √2 and inflate the whole sample's box.
     double far = 0;
-    for (int corner = 0; corner < (1 << d); ++corner) {
-      double s = 0;
-      for (int k = 0; k < d; ++k) {
-        const double e = (corner >> k) & 1 ? hi[k] : lo[k];
-        s += e * e;
-      }
-      far = std::max(far, std::sqrt(s));
+    bool bounded = true;
+    for (int k = 0; k < d; ++k) {
+      bounded = bounded && std::isfinite(lo[k]) && std::isfinite(hi[k]);
+      far = std::max({far, std::fabs(lo[k]), std::fabs(hi[k])});
     }
-    radius_[b] = std::max(radius_[b], std::isfinite(far) ? far : std::numeric_limits<double>::infinity());
+    if (bounded) {
+      const auto R = rotation_matrix(d, c.placement.angle, c.placement.orientation.data());
+      const DisplayMesh mesh = c.shape->display_mesh(0.0);
+      for (std::size_t v = 0; v + 2 < mesh.points.size(); v += 3) {
+        double s = 0;
+        for (int i = 0; i < d; ++i) {
+          double x = c.placement.offset[static_cast<std::size_t>(i)];
+          for (int k = 0; k < 3; ++k) x += R[static_cast<std::size_t>(3 * i + k)] * mesh.points[v + static_cast<std::size_t>(k)];
+          s += x * x;
+        }
+        far = std::max(far, std::sqrt(s));
+      }
+    }
+    radius_[b] = std::max(radius_[b], bounded ? far : std::numeric_limits<double>::infinity());
   }
 
   // The contact stages number the interacting groups; their names come from the scene's

@@ -107,6 +107,46 @@ TEST(Arrays, TriangularNormalForcesAreTheStatics) {
   expect_statics("array_triangular_2d.json", 44);
 }
 
+// The fabric of the rectangular array (4 columns of 5 frictionless disks, radius r, on a
+// floor between walls) is known exactly: the 20 vertical contacts (4 on the floor) carry
+// the columns' weights k mg (k = 1..5), the 25 horizontal and wall contacts nothing.
+// Coordination (2·16 + 4)/20 = 1.8; with the rattler rule (fewer than 2 contacts) every
+// column unravels from its top: no body is left; fabric tensor diag(0, 1); mean normal
+// force 3 mg; strong network f_n > 3 mg: 2/5 of the contacts, (4 + 5)/15 of the force;
+// solid fraction of the whole sample's box (the disks' extents, 8r × 10r): π/4.
+TEST(Arrays, FabricOfTheRectangularArray) {
+  SceneRun run = run_json("rectangular_fabric", read_config("array_rectangular_2d.json"));
+  ASSERT_FALSE(run.frames.empty());
+  const std::string fr = run.last();
+  const auto m = run.header("/bodies/mass");
+  const double W = 9.81 * *std::max_element(m.begin(), m.end());
+  auto at = [&](const std::string& name) { return run.scalar(fr, "analyses/fabric/" + name); };
+  EXPECT_EQ(at("bodies"), 20);
+  EXPECT_EQ(at("contacts"), 20);
+  EXPECT_NEAR(at("coordination"), 1.8, 1e-15);
+  EXPECT_EQ(at("coordination_no_rattlers"), 0);
+  EXPECT_EQ(at("rattler_fraction"), 1);
+  const auto F = run.at(fr, "analyses/fabric/fabric");
+  ASSERT_EQ(F.size(), 4u);
+  EXPECT_NEAR(F[0], 0, 1e-15);
+  EXPECT_NEAR(F[1], 0, 1e-15);
+  EXPECT_NEAR(F[3], 1, 1e-15);
+  EXPECT_NEAR(at("mean_normal_force"), 3 * W, 1e-8 * W);
+  EXPECT_NEAR(at("strong_share"), 0.4, 1e-15);
+  EXPECT_NEAR(at("strong_force_share"), 0.6, 1e-8);
+  EXPECT_NEAR(at("solid_fraction"), M_PI / 4, 1e-12);
+  const auto pdf = run.at(fr, "analyses/fabric/pdf");
+  const auto edges = run.at(fr, "analyses/fabric/pdf_edges");
+  double total = 0;
+  for (std::size_t k = 0; k < pdf.size(); ++k) total += pdf[k] * (edges[k + 1] - edges[k]);
+  EXPECT_NEAR(total, 1, 1e-12);
+  EXPECT_EQ(at("pdf_beyond"), 0);
+  std::printf("rectangular array fabric: z = %.4f, F_yy = %.4f, <f_n> = %.6f mg, strong %.3f / %.6f, solid fraction %.6f "
+              "(pi/4 = %.6f)\n",
+              at("coordination"), F[3], at("mean_normal_force") / W, at("strong_share"), at("strong_force_share"),
+              at("solid_fraction"), M_PI / 4);
+}
+
 namespace {
 
 /// Normal force, tangential magnitude and the two bodies of each contact of the last frame.
