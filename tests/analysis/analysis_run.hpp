@@ -53,6 +53,18 @@ inline void expect_input_error(const std::filesystem::path& dir, const std::file
   EXPECT_FALSE(std::filesystem::exists(dir / "out.h5"));
 }
 
+/// A 2D scene with a floor (group "wall") and the interactions of "grain" with itself and
+/// the floor, no other bodies: tests add theirs.
+inline json floor_scene_2d() {
+  return json::parse(R"({"format": "moreau-scene/1", "dimension": 2, "time": {"step": 1e-3, "duration": 0.01},
+    "gravity": [0, -9.81], "materials": {"m": {"density": 1000}},
+    "laws": {"l": {"type": "coulomb", "friction": 0.3}},
+    "bodies": [{"name": "floor", "fixed": true, "position": [0, -0.01],
+                "contactors": [{"shape": "segment", "length": 0.2, "thickness": 0.02, "group": "wall"}]}],
+    "interactions": [{"groups": ["grain", "grain"], "law": "l"}, {"groups": ["grain", "wall"], "law": "l"}],
+    "output": {"every": 10}})");
+}
+
 inline json read_config(const std::string& name) {
   std::ifstream in(std::string(MOREAU_SOURCE_DIR) + "/configs/" + name);
   return json::parse(in);

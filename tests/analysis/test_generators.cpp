@@ -13,16 +13,6 @@ namespace fs = std::filesystem;
 
 namespace {
 
-json scene2d() {
-  return json::parse(R"({"format": "moreau-scene/1", "dimension": 2, "time": {"step": 1e-3, "duration": 0.01},
-    "gravity": [0, -9.81], "materials": {"m": {"density": 1000}},
-    "laws": {"l": {"type": "coulomb", "friction": 0.3}},
-    "bodies": [{"name": "floor", "fixed": true, "position": [0, -0.01],
-                "contactors": [{"shape": "segment", "length": 0.2, "thickness": 0.02, "group": "wall"}]}],
-    "interactions": [{"groups": ["grain", "grain"], "law": "l"}, {"groups": ["grain", "wall"], "law": "l"}],
-    "output": {"every": 10}})");
-}
-
 /// A deposit of disks in a box; `size` a radius or a distribution.
 json deposit(int count, const json& size, const json& box, int seed = 1) {
   json d = {{"type", "deposit"}, {"count", count}, {"seed", seed},
@@ -85,7 +75,7 @@ void expect_bad(const std::string& name, const json& scene, const std::string& w
 }  // namespace
 
 TEST(Generators, DepositIsSeededDeterministicAndWithoutOverlap) {
-  json s = scene2d();
+  json s = floor_scene_2d();
   s["generators"] = {deposit(300, {{"distribution", "uniform"}, {"min", 0.002}, {"max", 0.003}}, {{-0.1, 0.0}, {0.1, 0.3}}, 7)};
   const json a = generate("deposit_a", s), b = generate("deposit_b", s);
   EXPECT_EQ(a.dump(), b.dump()) << "same seed, same bodies";
@@ -109,7 +99,7 @@ TEST(Generators, DepositIsSeededDeterministicAndWithoutOverlap) {
 }
 
 TEST(Generators, SizeDistributions) {
-  json s = scene2d();
+  json s = floor_scene_2d();
   s["generators"] = {deposit(200, {{"distribution", "list"}, {"values", {0.002, 0.004}}, {"fractions", {0.75, 0.25}}},
                              {{-0.1, 0.0}, {0.1, 0.4}}),
                      deposit(400, {{"distribution", "lognormal"}, {"median", 0.002}, {"sigma", 0.2}, {"min", 0.0015}, {"max", 0.003}},
@@ -135,7 +125,7 @@ TEST(Generators, SizeDistributions) {
 }
 
 TEST(Generators, PolygonsConvexAndACylinder) {
-  json s = scene2d();
+  json s = floor_scene_2d();
   json d = deposit(40, 0.004, {{-0.1, 0.0}, {0.1, 0.2}});
   d["grain"] = {{"shape", "polygon"}, {"sides", 5}, {"group", "grain"}};
   s["generators"] = {d};
@@ -172,7 +162,7 @@ TEST(Generators, PolygonsConvexAndACylinder) {
 }
 
 TEST(Generators, LatticesAndAvoid) {
-  json s = scene2d();
+  json s = floor_scene_2d();
   s["generators"] = {{{"type", "lattice"}, {"lattice", "triangular"}, {"counts", {5, 4}}, {"short_rows", true},
                       {"fixed_rows", 1}, {"origin", {-0.04, 0.01}}, {"radius", 0.01},
                       {"grain", {{"shape", "disk"}, {"group", "grain"}}}, {"body", {{"material", "m"}}}}};
@@ -199,7 +189,7 @@ TEST(Generators, LatticesAndAvoid) {
   EXPECT_NEAR(z1[2], std::sqrt(2.0 / 3.0), 1e-15);
 
   // A deposit between two walls keeps clear of them.
-  json w = scene2d();
+  json w = floor_scene_2d();
   w["bodies"].push_back({{"name", "left"}, {"fixed", true}, {"position", {-0.02, 0.1}}, {"angle", M_PI / 2},
                          {"contactors", {{{"shape", "segment"}, {"length", 0.2}, {"thickness", 0.01}, {"group", "wall"}}}}});
   w["generators"] = {deposit(50, 0.003, {{-0.05, 0.0}, {0.05, 0.2}})};
@@ -208,7 +198,7 @@ TEST(Generators, LatticesAndAvoid) {
 }
 
 TEST(Generators, GenerateWritesAReproducibleScene) {
-  json s = scene2d();
+  json s = floor_scene_2d();
   s["time"]["duration"] = 0.05;
   s["generators"] = {deposit(80, {{"distribution", "uniform"}, {"min", 0.003}, {"max", 0.004}}, {{-0.1, 0.0}, {0.1, 0.1}})};
   SceneRun original = run_json("reproducible_a", s);
@@ -221,7 +211,7 @@ TEST(Generators, GenerateWritesAReproducibleScene) {
 }
 
 TEST(Generators, DepositThatDoesNotFitSaysHowManyItPlaced) {
-  json s = scene2d();
+  json s = floor_scene_2d();
   s["generators"] = {deposit(500, 0.005, {{-0.05, 0.0}, {0.05, 0.1}})};
   s["generators"][0]["attempts"] = 200;
   Result r;
@@ -233,7 +223,7 @@ TEST(Generators, DepositThatDoesNotFitSaysHowManyItPlaced) {
 }
 
 TEST(Generators, BadInput) {
-  json s = scene2d();
+  json s = floor_scene_2d();
   s["generators"] = {{{"type", "lattise"}}};
   expect_bad("unknown_type", s, "/generators/0/type", "lattice");
   s["generators"] = {deposit(10, 0.003, {{-0.05, 0.0}, {0.05, 0.1}})};
