@@ -30,7 +30,9 @@ struct AnalysisBodies {
   std::span<const std::string> names;
   std::span<const double> mass;    ///< [nb] kg (2D: per unit thickness); 0 for fixed bodies given none
   std::span<const double> volume;  ///< [nb] m³ (2D: m², per unit thickness): solid volume of the contactors
-  std::span<const double> radius;  ///< [nb] m: bounding radius about `position` (infinite for half-spaces)
+  /// [nb] m: bounding radius about `position`, the distance to the farthest point of the
+  /// body's shapes (a disk's or sphere's radius, a polygon's circumradius; infinite for half-spaces)
+  std::span<const double> radius;
   /// [nb] 1 for the bodies of the sample: they move freely (not fixed, no driver). Fixed and
   /// driven bodies are the boundary: their contacts with the sample are boundary tractions.
   std::span<const char> sample;
