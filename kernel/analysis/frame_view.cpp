@@ -94,7 +94,6 @@ FrameView::FrameView(const World& w) {
     ++j;
   }
   if (j != cs.contactors.size()) throw std::logic_error("analyses: detected contactors left unmatched");
-  for (const auto& law : cs.laws) law_mu_.push_back(law->friction());
 }
 
 const AnalysisFrame& FrameView::build(const World& w, long steps_done, bool after_step) {
@@ -227,7 +226,9 @@ void FrameView::contacts(const World& w) {
   if (nc == 0) return;
   const double* bodies = set->field(C::bodies).data();
   const double* key = set->field(C::key).data();
-  const double* law = set->field(C::law).data();
+  // The μ each contact's law chose for the step (static or dynamic friction).
+  static const Eigen::VectorXd no_contacts;
+  const Eigen::VectorXd& friction = w.contacts ? w.contacts->last_friction() : no_contacts;
   const double* status = set->field(C::status).data();
   const double* point = set->field(C::point).data();
   const double* normal = set->field(C::normal).data();
@@ -237,7 +238,8 @@ void FrameView::contacts(const World& w) {
       contact_groups_[2 * c + s] = contactor_group_[static_cast<std::size_t>(key[3 * c + s])];
     }
     status_[c] = static_cast<signed char>(status[c]);
-    mu_[c] = law_mu_[static_cast<std::size_t>(law[c])];
+    const auto row = static_cast<Eigen::Index>(c);
+    mu_[c] = row < friction.size() ? friction[row] : NAN;
     double* fr = &frame_rows_[c * d * d];
     if (d == 2) {
       const auto f = local_frame_2d(normal + 2 * c);

@@ -40,7 +40,6 @@ class FrameView {
   std::vector<std::string> group_names_;  ///< interacting groups, by the contact stages' group index
   std::vector<std::string> all_groups_;   ///< every contactor group of the scene
   std::vector<int> contactor_group_;      ///< detected contactor → its group index
-  std::vector<double> law_mu_;            ///< μ of each law (the contacts set's `law` indexes them)
   // Per frame: the bodies' values gathered from their modelizations' node sets.
   std::vector<char> sample_;
   std::vector<double> mass_, x_, x0_, v_, v0_, w_, w0_, lever_, second_, force_, torque_;

@@ -62,7 +62,7 @@ struct AnalysisContacts {
   /// toward the first), then the tangent(s). Local vectors v_loc = frame · v_world.
   std::span<const double> frame;
   std::span<const double> impulse;  ///< [nc×d] N s, local frame (normal first); force = impulse / h
-  std::span<const double> mu;       ///< [nc] Coulomb friction coefficient of the contact's law
+  std::span<const double> mu;       ///< [nc] Coulomb friction coefficient the contact's law chose for the step
   std::span<const double> gap;      ///< [nc] m, at detection
   std::span<const signed char> status;  ///< [nc] 0 open, 1 sticking, 2 sliding (as written in the frame)
   /// [nc×d] m/s, local frame: relative velocity (first minus second) of the two bodies'
