@@ -21,7 +21,8 @@ packages=(cmake make g++ pkg-config
   libeigen3-dev libboost-dev libboost-filesystem-dev nlohmann-json3-dev libhdf5-dev libfcl-dev libcli11-dev
   libsuitesparse-dev
   libgtest-dev libgmock-dev libbenchmark-dev
-  hdf5-tools python3 python3-h5py python3-numpy python3-matplotlib)
+  hdf5-tools python3 python3-h5py python3-numpy python3-matplotlib
+  clang-14 libfuzzer-14-dev)  # the fuzz targets, run by the test suite (docs/robustness.md)
 missing=()
 for p in "${packages[@]}"; do
   dpkg-query -W -f='${Status}' "$p" 2>/dev/null | grep -q "install ok installed" || missing+=("$p")
@@ -34,7 +35,10 @@ if ((${#missing[@]})); then
   DEBIAN_FRONTEND=noninteractive $sudo apt-get install -y -qq --no-install-recommends "${missing[@]}" >/dev/null
 fi
 
-cmake -S . -B "$build" -DCMAKE_BUILD_TYPE=Release >/dev/null
+# The test suite also builds and runs the fuzz targets (clang + sanitizers, docs/robustness.md).
+fuzz=OFF
+[ "$mode" = test ] && command -v clang++-14 >/dev/null && fuzz=ON
+cmake -S . -B "$build" -DCMAKE_BUILD_TYPE=Release -DMOREAU_FUZZ_CLANG=$fuzz >/dev/null
 cmake --build "$build" -j"$jobs"
 
 if [ "$mode" = test ]; then

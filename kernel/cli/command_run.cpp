@@ -29,24 +29,32 @@ std::string shell_word(const std::string& s) {
 
 int command_run(const RunArgs& args, std::ostream& out, std::ostream& err) {
   return guarded(err, [&] {
+    if (args.out && args.out->empty()) throw InputError("", "--out: expected a file name, got an empty string");
     auto world = build_world(args.scene, args.out.value_or(""));
     const std::string path = args.out ? *args.out : world->output.file;
     RunOptions opt;
     std::optional<long> continue_after;
+    bool copy_first = false;
     if (args.restart) {
       opt.first_step = load_restart(*world, *args.restart, args.restart_frame);
       // Continuing in the same file: its frame of the restart step is there already.
-      // Into another file: a new file that starts with the restart frame.
+      // Into another file: a new file that starts with the restart frame, copied.
       std::error_code ec;
-      if (std::filesystem::equivalent(*args.restart, path, ec)) {
-        continue_after = opt.first_step;
-        opt.write_first_frame = false;
-      }
+      if (std::filesystem::equivalent(*args.restart, path, ec)) continue_after = opt.first_step;
+      else copy_first = true;
+      opt.write_first_frame = false;
     }
     if (args.steps) opt.steps = *args.steps;
     ProblemExport* exporter = world->contacts ? world->contacts->exporter.get() : nullptr;
     if (exporter) exporter->prepare();  // before the output: an unusable folder is bad input
-    std::unique_ptr<FrameSink> sink = open_output(*world, path, continue_after);
+    std::unique_ptr<FrameSink> sink;
+    if (copy_first) {
+      bool copied = false;
+      sink = open_output_from(*world, path, *args.restart, opt.first_step, copied);
+      opt.write_first_frame = !copied;  // a file of an earlier format: written from the state
+    } else {
+      sink = open_output(*world, path, continue_after);
+    }
     opt.sink = sink.get();
     if (!args.quiet) {
       opt.progress = &err;

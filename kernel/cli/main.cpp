@@ -6,6 +6,7 @@
 #include "../text/did_you_mean.hpp"
 #include "commands.hpp"
 #include "fclib_cli.hpp"
+#include "guarded.hpp"
 
 namespace {
 
@@ -62,6 +63,7 @@ void suggest(const CLI::App& app, int argc, char** argv) {
 
 int main(int argc, char** argv) {
   using namespace moreau::kernel;
+  install_process_guards();
   CLI::App app{"moreau: non-smooth contact dynamics (Moreau-Jean) for collections of bodies in 2D and 3D"};
   app.require_subcommand(1);
   app.set_version_flag("--version", version_text(), "print the version of moreau and of its formats, then exit");

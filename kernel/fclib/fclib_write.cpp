@@ -8,19 +8,20 @@ namespace moreau::fclib {
 
 void write_solution(const std::string& path, const Eigen::VectorXd& r, const Eigen::VectorXd& u, const Eigen::VectorXd* v) {
   namespace h5 = moreau::io::h5;
-  h5::quiet();
-  const std::string tmp = path + ".tmp";
+  // A folder that does not exist is the user's mistake (exit 2); a failing write is not.
+  std::error_code ec;
+  const auto folder = std::filesystem::absolute(path, ec).parent_path();
+  if (!std::filesystem::is_directory(folder, ec))
+    throw InputError("", "cannot create the solution file: its folder " + folder.string() + " does not exist", path);
+  h5::MemoryFile f(path);
+  if (!f) throw RunError("cannot create the solution file " + path + " in memory");
   {
-    h5::Id f = h5::file(H5Fcreate(tmp.c_str(), H5F_ACC_TRUNC, H5P_DEFAULT, H5P_DEFAULT));
-    if (!f) throw InputError("", "cannot create the solution file", path);
     h5::Id g = h5::group(H5Gcreate2(f.get(), "solution", H5P_DEFAULT, H5P_DEFAULT, H5P_DEFAULT));
     h5::write_doubles(g.get(), "r", r.data(), static_cast<hsize_t>(r.size()), 0);
     h5::write_doubles(g.get(), "u", u.data(), static_cast<hsize_t>(u.size()), 0);
     if (v) h5::write_doubles(g.get(), "v", v->data(), static_cast<hsize_t>(v->size()), 0);
   }
-  std::error_code ec;
-  std::filesystem::rename(tmp, path, ec);
-  if (ec) throw RunError("cannot move the solution into place at " + path + ": " + ec.message());
+  f.save_atomically(path);
 }
 
 }  // namespace moreau::fclib

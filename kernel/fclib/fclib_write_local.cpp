@@ -61,10 +61,10 @@ void write_pair(hid_t where, const LocalProblem& p, const Eigen::VectorXd& r) {
   write_vector(where, "u", u);
 }
 
-void write_file(const std::string& tmp, const std::string& path, const LocalProblem& p, const ProblemInfo& info,
+void write_file(const std::string& path, const LocalProblem& p, const ProblemInfo& info,
                 const Eigen::VectorXd* guess_r, const Eigen::VectorXd* solution_r) {
-  h5::Id f = h5::file(H5Fcreate(tmp.c_str(), H5F_ACC_TRUNC, H5P_DEFAULT, H5P_DEFAULT));
-  if (!f) throw RunError("cannot create the FCLib problem file " + path + " (its temporary " + tmp + ")");
+  h5::MemoryFile f(path);
+  if (!f) throw RunError("cannot create the FCLib problem file " + path + " in memory");
   h5::Id root = make_group(f.get(), "fclib_local");
   write_int(root.get(), "spacedim", p.dim);
   {
@@ -92,10 +92,9 @@ void write_file(const std::string& tmp, const std::string& path, const LocalProb
     h5::Id s = make_group(f.get(), "solution");
     write_pair(s.get(), p, *solution_r);
   }
-  // Closed here and checked: an unflushed file must not be renamed into place.
-  const hid_t id = f.get();
-  f.release();
-  if (H5Fclose(id) < 0) throw RunError("HDF5 write failed: closing " + tmp);
+  root.reset();
+  // Written out through a temporary file renamed into place, errors named (h5.hpp).
+  f.save_atomically(path);
 }
 
 }  // namespace
@@ -110,18 +109,7 @@ void write_local(const std::string& path, const LocalProblem& p, const ProblemIn
                    std::to_string(p.contacts()) + " contacts in dimension " + std::to_string(p.dim));
   for (const Eigen::VectorXd* r : {guess_r, solution_r})
     if (r && r->size() != n) throw RunError("internal: FCLib export of an impulse vector of the wrong size");
-  h5::quiet();
-  const std::string tmp = path + ".tmp";
-  try {
-    write_file(tmp, path, p, info, guess_r, solution_r);
-  } catch (...) {
-    std::error_code ignored;
-    std::filesystem::remove(tmp, ignored);
-    throw;
-  }
-  std::error_code ec;
-  std::filesystem::rename(tmp, path, ec);
-  if (ec) throw RunError("cannot move the FCLib problem into place at " + path + ": " + ec.message());
+  write_file(path, p, info, guess_r, solution_r);
 }
 
 }  // namespace moreau::fclib

@@ -1,6 +1,13 @@
 #include "h5.hpp"
 
+#include <fcntl.h>
+#include <unistd.h>
+
 #include <algorithm>
+#include <cerrno>
+#include <cstdlib>
+#include <cstring>
+#include <filesystem>
 #include <moreau/error.hpp>
 #include <stdexcept>
 
@@ -10,7 +17,137 @@ namespace {
 void check(herr_t rc, const std::string& what) {
   if (rc < 0) throw RunError("HDF5 write failed: " + what);
 }
+
+/// The values a dataset or attribute holds; refuses a size no machine holds (a damaged
+/// file may declare 2^40 values in a few bytes: allocating them would be killed by the OS).
+std::size_t value_count(hid_t space, std::size_t value_size, const std::string& path, const std::string& file) {
+  const hssize_t n = space >= 0 ? H5Sget_simple_extent_npoints(space) : -1;
+  if (n < 0) throw InputError(path, "cannot read the dataset's shape", file);
+  static const double memory = static_cast<double>(sysconf(_SC_PHYS_PAGES)) * static_cast<double>(sysconf(_SC_PAGE_SIZE));
+  if (static_cast<double>(n) * static_cast<double>(value_size) > memory / 2)
+    throw InputError(path, "the dataset declares " + std::to_string(n) + " values: more than half this machine's memory",
+                     file);
+  return static_cast<std::size_t>(n);
+}
+
+/// An attribute must hold one value: reading an array into one would overrun it.
+void require_one_value(hid_t attr, const std::string& name, const std::string& file, const std::string& path) {
+  Id sp = space(H5Aget_space(attr));
+  if (!sp || H5Sget_simple_extent_npoints(sp.get()) != 1)
+    throw InputError(path, "attribute '" + name + "' should hold one value", file);
+}
 }  // namespace
+
+namespace {
+
+// HDF5 cleans up at exit (atexit). After a failed H5Fclose its list of open files holds a
+// half-destroyed one, and that cleanup crashes (SIGSEGV in H5F__close_cb): every file of
+// moreau is closed by its owner before exit, so the library's own cleanup is switched off,
+// before anything else initialises the library.
+const bool no_hdf5_atexit = [] {
+  H5dont_atexit();
+  return true;
+}();
+
+Id file_access() {
+  Id fapl = plist(H5Pcreate(H5P_FILE_ACCESS));
+  H5Pset_libver_bounds(fapl.get(), H5F_LIBVER_V18, H5F_LIBVER_V18);
+  return fapl;
+}
+
+herr_t find_errno_text(unsigned, const H5E_error2_t* e, void* out) {
+  // The sec2 driver's message: "... errno = 28, error message = 'No space left on device', ..."
+  const std::string desc = e->desc ? e->desc : "";
+  const std::string key = "error message = '";
+  if (auto p = desc.find(key); p != std::string::npos) {
+    const auto start = p + key.size(), end = desc.find('\'', start);
+    *static_cast<std::string*>(out) = desc.substr(start, end == std::string::npos ? std::string::npos : end - start);
+  }
+  return 0;
+}
+
+}  // namespace
+
+namespace {
+// The core driver's memory, through these callbacks so that the final image is ours.
+void* image_malloc(std::size_t n, H5FD_file_image_op_t, void*) { return std::malloc(n); }
+void* image_memcpy(void* d, const void* s, std::size_t n, H5FD_file_image_op_t, void*) { return std::memcpy(d, s, n); }
+void* image_realloc(void* p, std::size_t n, H5FD_file_image_op_t, void*) { return std::realloc(p, n); }
+herr_t image_free(void* p, H5FD_file_image_op_t op, void* udata) {
+  auto* image = static_cast<MemoryFile::Image*>(udata);
+  if (op == H5FD_FILE_IMAGE_OP_FILE_CLOSE && image->keep && !image->bytes) image->bytes = static_cast<char*>(p);
+  else std::free(p);
+  return 0;
+}
+void* udata_copy(void* udata) { return udata; }  // one Image per file, owned by its MemoryFile
+herr_t udata_free(void*) { return 0; }
+}  // namespace
+
+MemoryFile::Image::~Image() { std::free(bytes); }
+
+MemoryFile::MemoryFile(const std::string& name) : image_(std::make_unique<Image>()) {
+  quiet();
+  Id fapl = file_access();
+  H5Pset_fapl_core(fapl.get(), 1 << 20, /*backing_store=*/0);
+  H5FD_file_image_callbacks_t callbacks{image_malloc, image_memcpy, image_realloc, image_free,
+                                        udata_copy,   udata_free,   image_.get()};
+  H5Pset_file_image_callbacks(fapl.get(), &callbacks);
+  file_ = file(H5Fcreate(name.c_str(), H5F_ACC_TRUNC, H5P_DEFAULT, fapl.get()));
+}
+
+Id create_on_disk(const std::string& path) {
+  quiet();
+  return file(H5Fcreate(path.c_str(), H5F_ACC_TRUNC, H5P_DEFAULT, file_access().get()));
+}
+
+std::string last_os_error() {
+  std::string text;
+  H5Ewalk2(H5E_DEFAULT, H5E_WALK_DOWNWARD, find_errno_text, &text);
+  return text;
+}
+
+void MemoryFile::save(const std::string& path) {
+  if (!file_ || H5Fflush(file_.get(), H5F_SCOPE_LOCAL) < 0) throw RunError("HDF5 could not finish " + path + " in memory");
+  const ssize_t size = H5Fget_file_image(file_.get(), nullptr, 0);  // the end of the file
+  image_->keep = true;
+  file_.reset();  // in memory: closing writes nothing; the driver hands the image over
+  if (size < 0 || !image_->bytes) throw RunError("HDF5 could not finish " + path + " in memory");
+  const int fd = ::open(path.c_str(), O_WRONLY | O_CREAT | O_TRUNC | O_CLOEXEC, 0666);
+  if (fd < 0) throw RunError("cannot write " + path + ": " + std::strerror(errno));
+  std::size_t done = 0;
+  int error = 0;
+  while (done < static_cast<std::size_t>(size) && !error) {
+    const ssize_t n = ::write(fd, image_->bytes + done, static_cast<std::size_t>(size) - done);
+    if (n > 0) done += static_cast<std::size_t>(n);
+    else if (n < 0 && errno != EINTR) error = errno;
+    else if (n == 0) error = EIO;
+  }
+  if (::close(fd) != 0 && !error) error = errno;
+  if (error) {
+    ::unlink(path.c_str());
+    throw RunError("cannot write " + path + ": " + std::strerror(error));
+  }
+}
+
+void MemoryFile::save_atomically(const std::string& path) {
+  const std::string part = path + ".part";
+  save(part);
+  std::error_code ec;
+  std::filesystem::rename(part, path, ec);
+  if (ec) {
+    std::filesystem::remove(part, ec);
+    throw RunError("cannot rename " + part + " to " + path + ": " + ec.message());
+  }
+}
+
+void close_on_disk(Id& f, const std::string& path) {
+  const hid_t id = f.get();
+  f.release();
+  if (H5Fclose(id) < 0) {
+    const std::string why = last_os_error();
+    throw RunError("cannot write " + path + (why.empty() ? ": HDF5 could not write it out" : ": " + why));
+  }
+}
 
 void write_doubles(hid_t where, const std::string& name, const double* data, hsize_t rows, hsize_t cols) {
   const hsize_t dims[2] = {rows, cols};
@@ -87,6 +224,7 @@ void link(hid_t where, const std::string& target, const std::string& name) {
 }
 
 bool exists(hid_t where, const std::string& path) {
+  if (path.empty()) return false;
   // Check each level: H5Lexists fails on a missing intermediate group.
   std::string partial;
   std::size_t start = path[0] == '/' ? 1 : 0;
@@ -108,11 +246,10 @@ std::vector<double> read_doubles(hid_t where, const std::string& path, std::vect
   Id ds = dataset(H5Dopen2(where, path.c_str(), H5P_DEFAULT));
   if (!ds) throw InputError(path, "cannot open the dataset", file);
   Id sp = space(H5Dget_space(ds.get()));
+  const std::size_t n = value_count(sp.get(), sizeof(double), path, file);
   const int rank = H5Sget_simple_extent_ndims(sp.get());
   std::vector<hsize_t> dims(std::max(rank, 0));
   if (rank > 0) H5Sget_simple_extent_dims(sp.get(), dims.data(), nullptr);
-  hsize_t n = 1;
-  for (auto d : dims) n *= d;
   std::vector<double> v(n);
   if (n > 0 && H5Dread(ds.get(), H5T_NATIVE_DOUBLE, H5S_ALL, H5S_ALL, H5P_DEFAULT, v.data()) < 0)
     throw InputError(path, "cannot read the dataset as numbers", file);
@@ -134,6 +271,8 @@ std::vector<hsize_t> dimensions(hid_t where, const std::string& path) {
 double read_attribute_double(hid_t where, const std::string& name, const std::string& file, const std::string& path) {
   if (H5Aexists(where, name.c_str()) <= 0) throw InputError(path, "missing attribute '" + name + "'", file);
   Id a = attribute(H5Aopen(where, name.c_str(), H5P_DEFAULT));
+  if (!a) throw InputError(path, "cannot open attribute '" + name + "'", file);
+  require_one_value(a.get(), name, file, path);
   double v = 0;
   if (H5Aread(a.get(), H5T_NATIVE_DOUBLE, &v) < 0) throw InputError(path, "cannot read attribute '" + name + "'", file);
   return v;
@@ -142,7 +281,10 @@ double read_attribute_double(hid_t where, const std::string& name, const std::st
 std::string read_attribute_string(hid_t where, const std::string& name, const std::string& file, const std::string& path) {
   if (H5Aexists(where, name.c_str()) <= 0) throw InputError(path, "missing attribute '" + name + "'", file);
   Id a = attribute(H5Aopen(where, name.c_str(), H5P_DEFAULT));
+  if (!a) throw InputError(path, "cannot open attribute '" + name + "'", file);
+  require_one_value(a.get(), name, file, path);
   Id t = type(H5Aget_type(a.get()));
+  if (!t) throw InputError(path, "cannot read attribute '" + name + "'", file);
   if (H5Tget_class(t.get()) != H5T_STRING) throw InputError(path, "attribute '" + name + "' is not a string", file);
   if (H5Tis_variable_str(t.get()) > 0) {
     char* p = nullptr;
@@ -155,20 +297,26 @@ std::string read_attribute_string(hid_t where, const std::string& name, const st
     return s;
   }
   const std::size_t n = H5Tget_size(t.get());
+  if (n == 0 || n > (1u << 30)) throw InputError(path, "attribute '" + name + "' has an unreadable size", file);
   std::string s(n, '\0');
-  H5Aread(a.get(), t.get(), s.data());
+  if (H5Aread(a.get(), t.get(), s.data()) < 0) throw InputError(path, "cannot read attribute '" + name + "'", file);
   return s.substr(0, s.find('\0'));
 }
 
 std::vector<std::string> read_strings(hid_t where, const std::string& path, const std::string& file) {
   if (!exists(where, path)) throw InputError(path, "missing dataset", file);
   Id ds = dataset(H5Dopen2(where, path.c_str(), H5P_DEFAULT));
+  if (!ds) throw InputError(path, "cannot open the dataset", file);
+  {
+    Id ft = type(H5Dget_type(ds.get()));
+    if (!ft || H5Tget_class(ft.get()) != H5T_STRING) throw InputError(path, "expected a dataset of strings", file);
+  }
   Id sp = space(H5Dget_space(ds.get()));
-  const hssize_t n = H5Sget_simple_extent_npoints(sp.get());
+  const std::size_t n = value_count(sp.get(), sizeof(char*), path, file);
   Id t = type(H5Tcopy(H5T_C_S1));
   H5Tset_size(t.get(), H5T_VARIABLE);
   H5Tset_cset(t.get(), H5T_CSET_UTF8);
-  std::vector<char*> ptrs(static_cast<std::size_t>(n), nullptr);
+  std::vector<char*> ptrs(n, nullptr);
   if (n > 0 && H5Dread(ds.get(), t.get(), H5S_ALL, H5S_ALL, H5P_DEFAULT, ptrs.data()) < 0)
     throw InputError(path, "cannot read the names", file);
   std::vector<std::string> out;

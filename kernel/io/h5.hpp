@@ -2,6 +2,7 @@
 // Thin RAII over the HDF5 C API, for kernel/io only (HDF5 stays out of public headers).
 #include <hdf5.h>
 
+#include <memory>
 #include <string>
 #include <utility>
 #include <vector>
@@ -44,6 +45,52 @@ inline Id plist(hid_t id) { return {id, H5Pclose}; }
 
 /// Silences HDF5's own error printing: moreau reports its own messages.
 inline void quiet() { H5Eset_auto2(H5E_DEFAULT, nullptr, nullptr); }
+
+// Writing files that survive a full disk or a file-size limit. HDF5 writes a file's
+// metadata when it closes it; when that write fails, H5Fclose fails and leaves the library
+// with a half-closed file that crashes it later (HDF5 1.10). So files are built in memory
+// (the core driver: closing never writes) and their bytes written out by save(), where a
+// failure is an errno with its text and no HDF5 state is left behind. Only files too large
+// for memory (the gathered output) are written by HDF5 itself (create_on_disk).
+
+/// A new HDF5 file in memory (the core driver, no backing store; 1.8 format: dense
+/// attributes, so a large scene fits in an attribute). Nothing exists on disk until save().
+class MemoryFile {
+ public:
+  /// `name` only labels the file. Check it with operator bool.
+  explicit MemoryFile(const std::string& name);
+  hid_t get() const { return file_.get(); }
+  explicit operator bool() const { return static_cast<bool>(file_); }
+  /// Closes the file and writes its bytes to `path` (replacing it). On failure removes
+  /// what it wrote of `path` and throws RunError naming `path` and the OS's reason ("No
+  /// space left on device", "File too large").
+  void save(const std::string& path);
+  /// The same through `path`.part renamed into place: a reader sees the old file or the
+  /// new one, never half of one; on failure nothing is left.
+  void save_atomically(const std::string& path);
+
+  /// The file's final bytes, handed over by the core driver as it closes the file (a
+  /// 1.8-format image taken while the file is open still says "open for writing").
+  struct Image {
+    char* bytes = nullptr;
+    bool keep = false;  ///< set just before the close that save() makes
+    ~Image();
+  };
+
+ private:
+  std::unique_ptr<Image> image_;  // before file_: outlives the close
+  Id file_;
+};
+/// A new HDF5 file on disk at `path` (same format), closed with close_on_disk().
+Id create_on_disk(const std::string& path);
+/// Closes a file created with create_on_disk, throwing RunError with the OS's reason if
+/// HDF5 could not write everything out. The library is then left in a state where
+/// nothing more may be done with that file: callers remove it and move on.
+void close_on_disk(Id& file, const std::string& path);
+/// The OS's reason for the last HDF5 call that failed on a system call (the errno text
+/// HDF5 records), or "" when it recorded none.
+std::string last_os_error();
+
 
 void write_doubles(hid_t where, const std::string& name, const double* data, hsize_t rows, hsize_t cols);
 /// float32 on file: for viewer data, where half the size matters more than the digits.

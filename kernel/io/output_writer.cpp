@@ -1,6 +1,15 @@
 #include "output_writer.hpp"
 
+#include <fcntl.h>
+#include <sys/resource.h>
+#include <sys/statvfs.h>
+#include <unistd.h>
+
+#include <algorithm>
+#include <cerrno>
 #include <chrono>
+#include <cstdlib>
+#include <cstring>
 #include <cstdio>
 #include <filesystem>
 #include <moreau/error.hpp>
@@ -11,6 +20,7 @@
 #include "field_io.hpp"
 #include "force_network.hpp"
 #include "h5.hpp"
+#include "output_lock.hpp"
 #include "xdmf.hpp"
 
 namespace moreau::io {
@@ -22,6 +32,16 @@ std::string frame_name(long step) {
   char buf[32];
   std::snprintf(buf, sizeof buf, "%08ld", step);
   return buf;
+}
+
+std::optional<long> frame_step(const std::string& name) {
+  if (name.size() < 8 || name.size() > 18) return std::nullopt;
+  long step = 0;
+  for (char c : name) {
+    if (c < '0' || c > '9') return std::nullopt;
+    step = 10 * step + (c - '0');
+  }
+  return step;
 }
 
 std::string frames_folder(const std::string& h5_path) { return h5_path + ".frames"; }
@@ -39,19 +59,11 @@ std::string legacy_node_set(const State& st) {
 
 namespace {
 
-h5::Id create_file(const std::string& path) {
-  h5::Id fapl = h5::plist(H5Pcreate(H5P_FILE_ACCESS));
-  // 1.8 format: dense attribute storage, so a large scene fits in the `scene` attribute.
-  H5Pset_libver_bounds(fapl.get(), H5F_LIBVER_V18, H5F_LIBVER_V18);
-  return h5::file(H5Fcreate(path.c_str(), H5F_ACC_TRUNC, H5P_DEFAULT, fapl.get()));
-}
+/// A frame, display or list file: built in memory, written out by finish().
+h5::MemoryFile create_file(const std::string& path) { return h5::MemoryFile(path); }
 
-/// Closes a file we wrote, checking that HDF5 could write everything out.
-void finish(h5::Id& file, const std::string& path) {
-  const hid_t id = file.get();
-  file.release();
-  if (H5Fclose(id) < 0) throw RunError("cannot finish writing " + path);
-}
+/// Writes a file made by create_file to `path`; RunError naming the path and the OS's reason.
+void finish(h5::MemoryFile& file, const std::string& path) { file.save(path); }
 
 /// Renames a finished temporary file into place (atomic on POSIX file systems).
 void publish_file(const std::string& from, const std::string& to) {
@@ -61,6 +73,42 @@ void publish_file(const std::string& from, const std::string& to) {
     fs::remove(from, ec);
     throw RunError("cannot rename " + from + " to " + to + ": " + ec.message());
   }
+}
+
+/// The largest gathered file built in memory: a quarter of the machine's memory, at most
+/// 2 GiB. MOREAU_GATHER_IN_MEMORY_MAX (bytes) overrides it (tests of the on-disk path).
+std::uintmax_t memory_gather_limit() {
+  if (const char* v = std::getenv("MOREAU_GATHER_IN_MEMORY_MAX")) return std::strtoull(v, nullptr, 10);
+  const double memory = static_cast<double>(sysconf(_SC_PHYS_PAGES)) * static_cast<double>(sysconf(_SC_PAGE_SIZE));
+  return static_cast<std::uintmax_t>(std::min(memory / 4, 2.0 * (1ull << 30)));
+}
+
+std::string megabytes(std::uintmax_t bytes) {
+  char buf[32];
+  std::snprintf(buf, sizeof buf, "%.1f MB", static_cast<double>(bytes) / 1e6);
+  return buf;
+}
+
+/// Before HDF5 writes a large file itself: the file-size limit and the free space must
+/// allow `need` bytes, which are then reserved (fallocate), so that HDF5 meets no failing
+/// write. RunError naming the file and what is missing.
+void reserve_room(const std::string& part, std::uintmax_t need) {
+  struct rlimit limit;
+  if (getrlimit(RLIMIT_FSIZE, &limit) == 0 && limit.rlim_cur != RLIM_INFINITY && limit.rlim_cur < need)
+    throw RunError("cannot write " + part + ": File too large (it needs about " + megabytes(need) +
+                   ", the file-size limit is " + megabytes(limit.rlim_cur) + ")");
+  struct statvfs disk;
+  const std::string folder = fs::absolute(part).parent_path().string();
+  if (statvfs(folder.c_str(), &disk) == 0 && static_cast<std::uintmax_t>(disk.f_bavail) * disk.f_frsize < need)
+    throw RunError("cannot write " + part + ": No space left on device (it needs about " + megabytes(need) + ", " +
+                   folder + " has " + megabytes(static_cast<std::uintmax_t>(disk.f_bavail) * disk.f_frsize) + " free)");
+  const int fd = ::open(part.c_str(), O_WRONLY | O_CLOEXEC);
+  if (fd < 0) return;
+  const int rc = ::fallocate(fd, FALLOC_FL_KEEP_SIZE, 0, static_cast<off_t>(need));
+  const int e = errno;
+  ::close(fd);
+  if (rc != 0 && e != EOPNOTSUPP && e != ENOSYS)
+    throw RunError("cannot write " + part + ": " + std::strerror(e) + " (reserving " + megabytes(need) + ")");
 }
 
 /// A constant field (output `once`), kept to rewrite the header: a copy of its values at
@@ -81,6 +129,7 @@ h5::Id group_of(hid_t where, const std::string& name) {
 }  // namespace
 
 struct OutputWriter::Impl {
+  OutputLock lock;  // first taken, last released
   std::string path;
   std::string folder;  // one file per frame while the run goes on
   OutputHeader header;
@@ -92,6 +141,7 @@ struct OutputWriter::Impl {
   XdmfLayout layout;
   std::vector<XdmfFrame> frames;  // every frame written, in step order
   bool open = true;
+  bool failed = false;  // a write failed: nothing more is written (fail())
 
   Clock::time_point last_list{};
   double list_seconds = 0;  // the cost of the last rewrite of the list
@@ -131,7 +181,7 @@ struct OutputWriter::Impl {
   void write_display_file() const {
     if (!header.display) return;
     const std::string part = display_file() + ".part";
-    h5::Id f = create_file(part);
+    h5::MemoryFile f = create_file(part);
     if (!f) throw RunError("cannot write " + part);
     write_display_header(f.get(), *header.display);
     finish(f, part);
@@ -214,14 +264,62 @@ struct OutputWriter::Impl {
   }
 
   /// Writes OUT.h5 anew, with the frames linked (`gather` false) or copied in, and
-  /// renames it into place.
+  /// renames it into place. On failure the temporary file is removed: OUT.h5 stays as it was.
   void publish(bool gather) {
-    const auto start = Clock::now();
     const std::string part = path + ".part";
-    h5::Id f = create_file(part);
-    if (!f) throw RunError("cannot write " + part);
-    write_header(f.get(), gather);
-    h5::Id g = h5::group(H5Gcreate2(f.get(), "frames", H5P_DEFAULT, H5P_DEFAULT, H5P_DEFAULT));
+    try {
+      write_list(gather, part);
+    } catch (...) {
+      std::error_code ec;
+      fs::remove(part, ec);
+      throw;
+    }
+  }
+
+  void write_list(bool gather, const std::string& part) {
+    const auto start = Clock::now();
+    // Built in memory and written with write(2) when it fits in memory (HDF5 1.10 crashes
+    // when a write fails during H5Ocopy or H5Fclose); a gathered file too large for that is
+    // written by HDF5 once the room it needs is checked and reserved.
+    const std::uintmax_t need = gather ? gathered_size() : 0;
+    if (gather && need > memory_gather_limit()) {
+      h5::Id f = h5::create_on_disk(part);
+      if (!f) throw RunError("cannot write " + part + ": " + h5::last_os_error());
+      reserve_room(part, need);
+      write_list_into(f.get(), gather, part);
+      h5::close_on_disk(f, part);
+    } else {
+      h5::MemoryFile f = create_file(part);
+      if (!f) throw RunError("cannot create " + part + " in memory");
+      write_list_into(f.get(), gather, part);
+      finish(f, part);
+    }
+    publish_file(part, path);
+    listed = frames.size();
+    last_list = Clock::now();
+    list_seconds = std::chrono::duration<double>(last_list - start).count();
+  }
+
+  /// An upper bound of the gathered file's size: the frame files, the display file, and
+  /// room for the header.
+  std::uintmax_t gathered_size() const {
+    std::error_code ec;
+    std::uintmax_t total = 1 << 20;
+    for (const auto& fr : frames) {
+      const auto n = fs::file_size(frame_file(fr.step), ec);
+      if (!ec) total += n;
+    }
+    if (header.display) {
+      const auto n = fs::file_size(display_file(), ec);
+      if (!ec) total += n;
+    }
+    return total + header.scene_text.size();
+  }
+
+  /// The header and the frames (linked, or copied in when `gather`) under `root`.
+  void write_list_into(hid_t root, bool gather, const std::string& part) const {
+    write_header(root, gather);
+    h5::Id g = h5::group(H5Gcreate2(root, "frames", H5P_DEFAULT, H5P_DEFAULT, H5P_DEFAULT));
     for (const auto& fr : frames) {
       const std::string name = frame_name(fr.step);
       herr_t rc;
@@ -231,14 +329,76 @@ struct OutputWriter::Impl {
       } else {
         rc = H5Lcreate_external(frame_link(fr.step).c_str(), "/frame", g.get(), name.c_str(), H5P_DEFAULT, H5P_DEFAULT);
       }
-      if (rc < 0) throw RunError("cannot put frame " + name + " into " + part);
+      if (rc < 0) {
+        const std::string why = h5::last_os_error();
+        throw RunError("cannot put frame " + name + " into " + part + (why.empty() ? "" : ": " + why));
+      }
     }
-    g.reset();
-    finish(f, part);
-    publish_file(part, path);
-    listed = frames.size();
-    last_list = Clock::now();
-    list_seconds = std::chrono::duration<double>(last_list - start).count();
+  }
+
+  /// Continues the file at `path` after frame `after_step` (append()).
+  void reopen(long after_step);
+
+  /// Lists frame `name` (step `step`) of the open output file `src_path` (group `frames`),
+  /// copying it into the folder when `copy` (else it is there already).
+  void adopt(hid_t frames_group, const std::string& name, long step, const std::string& src_path, bool copy) {
+    const std::string where = "/frames/" + name;
+    h5::Id fg = h5::group(H5Gopen2(frames_group, name.c_str(), H5P_DEFAULT));
+    if (!fg) throw InputError(where, "cannot open the frame", src_path);
+    const double time = h5::read_attribute_double(fg.get(), "time", src_path, where);
+    std::size_t nc = 0;
+    if (h5::exists(fg.get(), "contacts/gap")) {
+      std::vector<hsize_t> shape;
+      nc = h5::read_doubles(fg.get(), "contacts/gap", &shape, src_path).size();
+    }
+    // The viewer description may only name what the frame holds: it may come from a run
+    // with other output settings, or from before normal_force was written.
+    XdmfFrame listed{step, time, nc};
+    listed.normal_force = h5::exists(fg.get(), "contacts/normal_force");
+    listed.network = h5::exists(fg.get(), "contacts/network");
+    if (header.display) {
+      const auto shape = h5::dimensions(fg.get(), "display/points");
+      listed.display = !shape.empty() && shape[0] == header.display->vertices();
+    }
+    fg.reset();
+    if (copy) {
+      const std::string part = frame_file(step) + ".part";
+      h5::MemoryFile dst = create_file(part);
+      if (!dst) throw RunError("cannot create " + part + " in memory");
+      if (H5Ocopy(frames_group, name.c_str(), dst.get(), "frame", H5P_DEFAULT, H5P_DEFAULT) < 0)
+        throw InputError(where, "cannot copy the frame", src_path);
+      finish(dst, part);
+      publish_file(part, frame_file(step));
+    }
+    frames.push_back(listed);
+  }
+
+  /// A write failed (a full disk, a file-size limit): stop writing, leave what a killed run
+  /// leaves — OUT.h5 listing every complete frame, with OUT.h5.frames/ beside it, which
+  /// read as one file and which `--restart` continues — and no temporary file. Rethrows
+  /// with the way to recover.
+  [[noreturn]] void fail(const std::exception& e) {
+    failed = true;
+    open = false;
+    std::error_code ec;
+    fs::remove(path + ".part", ec);
+    for (const auto& entry : fs::directory_iterator(folder, ec))
+      if (entry.path().extension() == ".part") fs::remove(entry.path(), ec);
+    try {
+      if (listed < frames.size()) publish(false);  // small: may still fit
+    } catch (const std::exception&) {
+    }
+    try {
+      write_xdmf();
+    } catch (const std::exception&) {
+    }
+    const long last = listed ? frames[listed - 1].step : -1;
+    std::string what = e.what();
+    if (last >= 0)
+      what += "; the frames up to step " + std::to_string(last) + " are complete in " + path + " with " + folder +
+              "/ beside it (read as one file, like the output of a killed run); once there is room, `moreau run SCENE "
+              "--restart " + path + " --out " + path + "` continues the run and gathers them into " + path;
+    throw RunError(what);
   }
 
   void write_xdmf() {
@@ -258,7 +418,8 @@ OutputWriter::~OutputWriter() {
   try {
     close();
   } catch (const std::exception&) {
-    // Unwinding from another error: OUT.h5 and its folder still hold every listed frame.
+    // Unwinding from another error: OUT.h5 and its folder still hold every listed frame
+    // (fail() said so when the error was the writer's).
   }
 }
 
@@ -288,14 +449,16 @@ std::unique_ptr<OutputWriter> OutputWriter::create(const std::string& path, cons
   impl->folder = frames_folder(path);
   impl->header = header;
   impl->keep_header(state);
+  impl->lock = OutputLock::acquire(path);
   start_folder(path, impl->folder);
   try {
     impl->write_display_file();
     impl->publish(false);
   } catch (const RunError& e) {
+    // A full disk at the start: nothing left behind (a previous OUT.h5 stays as it was).
     std::error_code ec;
     fs::remove_all(impl->folder, ec);
-    throw InputError("", std::string("cannot create the output file: ") + e.what(), path);
+    throw RunError(std::string("cannot create the output file: ") + e.what());
   }
   return std::unique_ptr<OutputWriter>(new OutputWriter(std::move(impl)));
 }
@@ -308,11 +471,32 @@ std::unique_ptr<OutputWriter> OutputWriter::append(const std::string& path, cons
   impl->folder = frames_folder(path);
   impl->header = header;
   impl->keep_header(state);
+  impl->lock = OutputLock::acquire(path);
+  std::error_code ec;
+  const bool had_folder = fs::is_directory(impl->folder, ec);
+  try {
+    impl->reopen(after_step);
+  } catch (...) {
+    // The file stays as it was: a folder made here goes, a killed run's stays.
+    fs::remove(path + ".part", ec);
+    if (!had_folder) fs::remove_all(impl->folder, ec);
+    throw;
+  }
+  return std::unique_ptr<OutputWriter>(new OutputWriter(std::move(impl)));
+}
+
+void OutputWriter::Impl::reopen(long after_step) {
   {
     h5::Id src = h5::file(H5Fopen(path.c_str(), H5F_ACC_RDONLY, H5P_DEFAULT));
     if (!src) throw InputError("", "cannot open the output file to continue it", path);
-    if (h5::read_strings(src.get(), "/bodies/name", path) != state.names())
+    if (h5::read_strings(src.get(), "/bodies/name", path) != names)
       throw InputError("/bodies/name", "the output file holds other bodies than the scene", path);
+    // Its frames are copied as they are: a moreau-output/1 file's would lack the sets'
+    // groups of the frames written after them, in a file that says moreau-output/2.
+    if (h5::read_attribute_string(src.get(), "format", path, "/") != output_format)
+      throw InputError("/", std::string("a file of an earlier format cannot be continued in place: restart from it into a "
+                                        "new file (--out NEW.h5), which is ") + output_format,
+                       path);
     // Its frames are copied as they are: a moreau-output/1 file's would lack the sets'
     // groups of the frames written after them, in a file that says moreau-output/2.
     if (h5::read_attribute_string(src.get(), "format", path, "/") != output_format)
@@ -321,51 +505,44 @@ std::unique_ptr<OutputWriter> OutputWriter::append(const std::string& path, cons
                        path);
     std::error_code ec;
     fs::remove(path + ".part", ec);
-    fs::create_directory(impl->folder, ec);
-    impl->write_display_file();
-    h5::Id frames = h5::group(H5Gopen2(src.get(), "/frames", H5P_DEFAULT));
-    if (!frames) throw InputError("/frames", "missing group", path);
+    fs::create_directory(folder, ec);
+    write_display_file();
+    h5::Id list = h5::group(H5Gopen2(src.get(), "/frames", H5P_DEFAULT));
+    if (!list) throw InputError("/frames", "missing group", path);
     // A gathered file's frames are copied out to the folder; a killed run's are there already.
-    for (const auto& name : h5::children(frames.get())) {
-      const long step = std::stol(name);
+    for (const auto& name : h5::children(list.get())) {
+      const std::optional<long> parsed = frame_step(name);
+      if (!parsed) throw InputError("/frames/" + name, "not a frame (frames are named by their step, 8 digits)", path);
+      const long step = *parsed;
       H5L_info_t info;
-      const bool linked = H5Lget_info(frames.get(), name.c_str(), &info, H5P_DEFAULT) >= 0 &&
+      const bool linked = H5Lget_info(list.get(), name.c_str(), &info, H5P_DEFAULT) >= 0 &&
                           info.type == H5L_TYPE_EXTERNAL;
       if (step > after_step) {
-        if (linked) fs::remove(impl->frame_file(step), ec);
+        if (linked) fs::remove(frame_file(step), ec);
         continue;
       }
-      h5::Id fg = h5::group(H5Gopen2(frames.get(), name.c_str(), H5P_DEFAULT));
-      if (!fg) throw InputError("/frames/" + name, "cannot open the frame", path);
-      const double time = h5::read_attribute_double(fg.get(), "time", path, "/frames/" + name);
-      std::size_t nc = 0;
-      if (h5::exists(fg.get(), "contacts/gap")) {
-        std::vector<hsize_t> shape;
-        nc = h5::read_doubles(fg.get(), "contacts/gap", &shape, path).size();
-      }
-      // The viewer description may only name what the frame holds: it may come from a run
-      // with other output settings, or from before normal_force was written.
-      XdmfFrame listed{step, time, nc};
-      listed.normal_force = h5::exists(fg.get(), "contacts/normal_force");
-      listed.network = h5::exists(fg.get(), "contacts/network");
-      if (impl->header.display) {
-        const auto shape = h5::dimensions(fg.get(), "display/points");
-        listed.display = !shape.empty() && shape[0] == impl->header.display->vertices();
-      }
-      fg.reset();
-      if (!linked) {
-        const std::string part = impl->frame_file(step) + ".part";
-        h5::Id dst = create_file(part);
-        if (!dst || H5Ocopy(frames.get(), name.c_str(), dst.get(), "frame", H5P_DEFAULT, H5P_DEFAULT) < 0)
-          throw RunError("cannot copy frame " + name + " of " + path + " to " + part);
-        finish(dst, part);
-        publish_file(part, impl->frame_file(step));
-      }
-      impl->frames.push_back(listed);
+      // A killed run's frame is in the folder already (unless the link points elsewhere).
+      adopt(list.get(), name, step, path, !(linked && fs::exists(frame_file(step), ec)));
     }
   }
-  impl->publish(false);
-  return std::unique_ptr<OutputWriter>(new OutputWriter(std::move(impl)));
+  publish(false);
+}
+
+bool OutputWriter::copy_first_frame(const std::string& source, long step) {
+  Impl& m = *impl_;
+  h5::Id src = h5::file(H5Fopen(source.c_str(), H5F_ACC_RDONLY, H5P_DEFAULT));
+  if (!src) throw InputError("", "cannot open as an HDF5 output file", source);
+  // A frame of an earlier format would mix layouts in this file: the run writes it anew.
+  if (h5::read_attribute_string(src.get(), "format", source, "/") != output_format) return false;
+  h5::Id list = h5::group(H5Gopen2(src.get(), "/frames", H5P_DEFAULT));
+  if (!list) throw InputError("/frames", "missing group", source);
+  try {
+    m.adopt(list.get(), frame_name(step), step, source, true);
+    m.publish(false);
+  } catch (const RunError& e) {
+    m.fail(e);
+  }
+  return true;
 }
 
 namespace {
@@ -421,10 +598,21 @@ void write_frame_group(hid_t frame, const FrameGroup& group) {
 void OutputWriter::write_frame(long step, double time, const State& state, long iterations, double error,
                                const std::vector<FrameGroup>& extra) {
   Impl& m = *impl_;
+  if (m.failed) throw RunError("the output file " + m.path + " could not be written");
+  try {
+    write_frame_file(step, time, state, iterations, error, extra);
+  } catch (const std::exception& e) {
+    m.fail(e);
+  }
+}
+
+void OutputWriter::write_frame_file(long step, double time, const State& state, long iterations, double error,
+                                    const std::vector<FrameGroup>& extra) {
+  Impl& m = *impl_;
   const std::string name = frame_name(step);
   const std::string file = m.frame_file(step);
   const std::string part = file + ".part";
-  h5::Id f = create_file(part);
+  h5::MemoryFile f = create_file(part);
   if (!f) throw RunError("cannot write frame " + name + " to " + part);
   std::size_t contacts = 0;
   bool with_contacts = false;
@@ -495,8 +683,12 @@ void OutputWriter::write_frame(long step, double time, const State& state, long 
 void OutputWriter::close() {
   Impl& m = *impl_;
   if (!m.open) return;
+  try {
+    m.publish(true);
+  } catch (const std::exception& e) {
+    m.fail(e);
+  }
   m.open = false;
-  m.publish(true);
   std::error_code ec;
   fs::remove_all(m.folder, ec);
   m.write_xdmf();

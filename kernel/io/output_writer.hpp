@@ -21,6 +21,11 @@
 // (h5py, ParaView and `--restart` follow the links); every frame listed is complete.
 // The list of frames is rewritten at most as often as keeps its cost under a tenth of
 // the run time, so a kill loses at most the last few seconds of frames.
+// A run whose writes fail (a full disk, a file-size limit) ends the same way, with no
+// temporary file left: OUT.h5 then lists every complete frame. Frame and list files are
+// built in memory and written with write(2) (h5.hpp: a failed H5Fclose leaves HDF5 1.10
+// unusable); only the gathered file is written by HDF5.
+// OUT.h5.lock (output_lock.hpp) keeps a second run from writing the same file.
 //
 // Frames are written at stage `output`, after `end_step` swapped the time depths: the
 // step's final values are in Depth::begin.
@@ -91,18 +96,31 @@ struct FrameGroup {
 
 class OutputWriter {
  public:
-  /// A new file (replacing any file at `path`). Unwritable path: InputError naming it.
+  /// A new file (replacing any file at `path`). Unwritable path, or another run writing
+  /// `path` (OUT.h5.lock): InputError naming it. A write failing at the start (a full
+  /// disk): RunError with the OS's reason, nothing left behind.
   static std::unique_ptr<OutputWriter> create(const std::string& path, const OutputHeader& header, const State& state);
   /// An existing output file of the same scene, to continue after frame `after_step`:
-  /// later frames are dropped.
+  /// later frames are dropped. Same errors.
   static std::unique_ptr<OutputWriter> append(const std::string& path, const OutputHeader& header, const State& state,
                                               long after_step);
   /// Without close(), the frames written so far are still gathered into one file.
   ~OutputWriter();
 
+  // A write that fails (a full disk, a file-size limit: RunError naming the file and the
+  // OS's reason) ends the writer: no temporary file is left, and OUT.h5 lists every
+  // complete frame with OUT.h5.frames/ beside it, as after a killed run (the message says
+  // how to continue). No later call writes anything.
+
   /// `extra`: groups added to the frame (analyses), written after the State's sets.
   void write_frame(long step, double time, const State& state, long solver_iterations, double solver_error,
                    const std::vector<FrameGroup>& extra = {});
+  /// A new file's first frame copied as it is from frame `step` of output file `source`: a
+  /// restart into a new file starts with its restart frame, contacts and solver figures
+  /// included, bit-identical to the uninterrupted run's (they cannot be recomputed without
+  /// the step before it). False (nothing done) when `source` is of an earlier format,
+  /// whose frames would mix layouts here: the caller writes the first frame itself.
+  bool copy_first_frame(const std::string& source, long step);
   void close();
 
   const std::string& path() const;
@@ -110,11 +128,15 @@ class OutputWriter {
  private:
   struct Impl;
   explicit OutputWriter(std::unique_ptr<Impl> impl);
+  void write_frame_file(long step, double time, const State& state, long solver_iterations, double solver_error,
+                        const std::vector<FrameGroup>& extra);
   std::unique_ptr<Impl> impl_;
 };
 
 /// Frame names are the step number, zero-padded to 8 digits.
 std::string frame_name(long step);
+/// The step of a frame name; nullopt when `name` is not one (a damaged or foreign file).
+std::optional<long> frame_step(const std::string& name);
 
 /// The folder holding one file per frame while a run writes OUT.h5: OUT.h5.frames.
 std::string frames_folder(const std::string& h5_path);

@@ -1,11 +1,14 @@
 #include "restart.hpp"
 
 #include <algorithm>
+#include <cmath>
+#include <limits>
 #include <moreau/error.hpp>
 
 #include "field_io.hpp"
 #include "h5.hpp"
 #include "output_writer.hpp"
+#include "restart_check.hpp"
 
 namespace moreau::io {
 
@@ -27,11 +30,16 @@ h5::Id open_output(const std::string& path) {
   return f;
 }
 
-std::vector<long> frames_of(hid_t file) {
+std::vector<long> frames_of(hid_t file, const std::string& path) {
   std::vector<long> steps;
   if (!h5::exists(file, "/frames")) return steps;
   h5::Id g = h5::group(H5Gopen2(file, "/frames", H5P_DEFAULT));
-  for (const auto& n : h5::children(g.get())) steps.push_back(std::stol(n));
+  if (!g) throw InputError("/frames", "expected a group of frames", path);
+  for (const auto& n : h5::children(g.get())) {
+    const std::optional<long> step = frame_step(n);
+    if (!step) throw InputError("/frames/" + n, "not a frame (frames are named by their step, 8 digits)", path);
+    steps.push_back(*step);
+  }
   std::sort(steps.begin(), steps.end());
   return steps;
 }
@@ -40,7 +48,7 @@ std::vector<long> frames_of(hid_t file) {
 
 std::vector<long> list_frames(const std::string& path) {
   h5::Id f = open_output(path);
-  return frames_of(f.get());
+  return frames_of(f.get(), path);
 }
 
 RestartFrame read_restart(const std::string& path, std::optional<long> step, State& state) {
@@ -50,7 +58,7 @@ RestartFrame read_restart(const std::string& path, std::optional<long> step, Sta
     throw InputError("/bodies/name", "the file holds " + std::to_string(names.size()) +
                                          " bodies that do not match the scene's " + std::to_string(state.bodies()),
                      path);
-  const auto steps = frames_of(f.get());
+  const auto steps = frames_of(f.get(), path);
   if (steps.empty()) throw InputError("/frames", "the file has no complete frame to restart from", path);
   const long chosen = step ? *step : steps.back();
   if (!std::binary_search(steps.begin(), steps.end(), chosen))
@@ -63,7 +71,9 @@ RestartFrame read_restart(const std::string& path, std::optional<long> step, Sta
   r.step = chosen;
   {
     h5::Id g = h5::group(H5Gopen2(f.get(), fp.c_str(), H5P_DEFAULT));
+    if (!g) throw InputError(fp, "cannot open the frame (a group expected)", path);
     r.time = h5::read_attribute_double(g.get(), "time", path, fp);
+    if (!std::isfinite(r.time)) throw InputError(fp, "attribute 'time' is not finite", path);
   }
   // The modelizations must be the scene's (a moreau-output/1 file has rigid bodies only).
   std::vector<std::string> models;
@@ -95,6 +105,7 @@ RestartFrame read_restart(const std::string& path, std::optional<long> step, Sta
                                  "with the same laws",
                          path);
       read_field(f.get(), dp, field, path);
+      check_restart_field(field, dp, path);
     }
   }
   return r;

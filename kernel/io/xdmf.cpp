@@ -290,13 +290,18 @@ void write_xdmf_file(const std::string& h5_path, int d, const std::vector<XdmfFr
 
   const std::string target = xdmf_path(h5_path);
   const std::string tmp = target + ".tmp";
+  std::error_code ec;
   {
     std::ofstream out(tmp, std::ios::trunc);
     out << os.str();
-    if (!out) return;  // the viewer description is a convenience: never fail the run for it
+    out.close();
+    if (!out) {  // the viewer description is a convenience: never fail the run for it
+      fs::remove(tmp, ec);
+      return;
+    }
   }
-  std::error_code ec;
   fs::rename(tmp, target, ec);
+  if (ec) fs::remove(tmp, ec);
 }
 
 }  // namespace moreau::io

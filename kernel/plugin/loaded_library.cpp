@@ -4,6 +4,8 @@
 #include <moreau/error.hpp>
 #include <moreau/plugin.hpp>
 
+#include "boundary.hpp"
+
 namespace moreau::kernel {
 
 struct LoadedLibrary::Impl {
@@ -19,8 +21,11 @@ LibraryHandle LoadedLibrary::open(const std::filesystem::path& path) {
   const std::string file = path.string();
   auto impl = std::make_unique<Impl>();
   try {
-    // Local binding: two plugins may define the same internal symbols.
-    impl->lib.load(path, boost::dll::load_mode::rtld_lazy | boost::dll::load_mode::rtld_local);
+    // Local binding: two plugins may define the same internal symbols. Immediate binding:
+    // a symbol the library needs and nothing provides is refused here, with the loader's
+    // message, not found at its first call in the middle of a run (exit 127).
+    const LoadingLibrary loading(file);
+    impl->lib.load(path, boost::dll::load_mode::rtld_now | boost::dll::load_mode::rtld_local);
   } catch (const std::exception& e) {
     throw InputError("", std::string("failed to load plugin library: ") + e.what(), file);
   }

@@ -5,10 +5,13 @@
 #include <unistd.h>
 
 #include <algorithm>
+#include <cstdio>
 #include <cstdlib>
 #include <moreau/error.hpp>
 #include <set>
 #include <sstream>
+
+#include "boundary.hpp"
 
 namespace fs = std::filesystem;
 
@@ -47,6 +50,10 @@ std::string join(const std::vector<std::string>& v, const char* sep = ", ") {
 
 }  // namespace
 
+std::string plugin_label(Kind kind, const std::string& name, const std::string& pointer) {
+  return std::string("the ") + kind_name(kind) + " '" + name + "'" + (pointer.empty() ? "" : " (" + pointer + ")");
+}
+
 Registry::Registry(std::vector<fs::path> search_paths) : paths_(std::move(search_paths)) {}
 
 fs::path Registry::installed_folder() {
@@ -65,8 +72,15 @@ std::vector<fs::path> Registry::standard_paths(const std::vector<std::string>& s
   if (const char* env = std::getenv("MOREAU_PLUGIN_PATH")) {
     std::stringstream ss(env);
     std::string item;
-    while (std::getline(ss, item, ':'))
-      if (!item.empty()) out.emplace_back(item);
+    static std::set<std::string> warned;  // once per folder, however many registries
+    while (std::getline(ss, item, ':')) {
+      if (item.empty()) continue;
+      std::error_code ec;
+      if (!fs::is_directory(item, ec) && warned.insert(item).second)
+        std::fprintf(stderr, "warning: MOREAU_PLUGIN_PATH names \"%s\", which is not a folder: no plugin is looked for there\n",
+                     item.c_str());
+      out.emplace_back(item);
+    }
   }
   if (auto inst = installed_folder(); !inst.empty()) out.push_back(inst);
   return out;
@@ -97,7 +111,15 @@ std::vector<std::pair<Kind, std::string>> Registry::load_library(const fs::path&
   if (loaded_.count(key)) return {};
   LibraryHandle lib = LoadedLibrary::open(file);
   CollectingRegistrar collect;
-  lib->manifest().register_all(collect);
+  try {
+    lib->manifest().register_all(collect);
+  } catch (...) {
+    try {
+      rethrow_kernel_owned("the plugin library", "to register its plugins");
+    } catch (const std::exception& e) {
+      throw InputError("", e.what(), file.string());
+    }
+  }
   if (collect.list.empty())
     throw InputError("", "the plugin library registered nothing (its manifest is valid but it registers no plugin)",
                      file.string());

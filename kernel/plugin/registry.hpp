@@ -12,10 +12,14 @@
 #include <utility>
 #include <vector>
 
+#include "boundary.hpp"
 #include "loaded_library.hpp"
 #include "owned.hpp"
 
 namespace moreau::kernel {
+
+/// "the hook 'energy_log' (/hooks/0)": a plugin as messages name it.
+std::string plugin_label(Kind kind, const std::string& name, const std::string& pointer = "");
 
 struct RegistryEntry {
   LibraryHandle library;  // null for kernel built-ins; declared first so it is released last
@@ -43,18 +47,26 @@ class Registry {
   /// Same, but nullptr when no library provides it (other load errors still throw).
   const RegistryEntry* find(Kind kind, const std::string& name);
 
-  /// Creates a plugin object whose class derives from T (T::kind must match).
+  /// Creates a plugin object whose class derives from T (T::kind must match). Whatever
+  /// the plugin's constructor throws comes out kernel-owned (boundary.hpp): an InputError
+  /// keeps its text and pointer; anything else is an InputError at `pointer` naming the
+  /// plugin (a constructor's job is to check its parameters).
   template <class T>
   Owned<T> create(const std::string& name, const Params& params, const BuildContext& ctx,
                   const std::string& pointer = "") {
     const RegistryEntry& e = require(T::kind, name, pointer);
-    std::unique_ptr<Plugin> obj = e.registration.factory(params, ctx);
+    std::unique_ptr<Plugin> obj;
+    try {
+      obj = e.registration.factory(params, ctx);
+    } catch (...) {
+      rethrow_kernel_owned_input(pointer, plugin_label(T::kind, name), "while it was being created");
+    }
     auto* typed = dynamic_cast<T*>(obj.get());
     if (typed == nullptr)
       throw InputError(pointer, std::string("plugin '") + name + "' does not implement the " + kind_name(T::kind) +
                                     " interface");
     obj.release();
-    return Owned<T>(e.library, std::unique_ptr<T>(typed));
+    return Owned<T>(e.library, std::unique_ptr<T>(typed), plugin_label(T::kind, name, pointer));
   }
 
   /// Loads one library file and registers what it provides. Returns its registrations'

@@ -5,6 +5,7 @@
 #include "../io/output_writer.hpp"
 #include "../contact/contact_stages.hpp"
 #include "../io/restart.hpp"
+#include "../io/restart_check.hpp"
 
 namespace moreau::kernel {
 
@@ -32,8 +33,17 @@ std::unique_ptr<FrameSink> open_output(const World& world, const std::string& pa
   return std::make_unique<Hdf5Sink>(io::OutputWriter::create(path, header, world.state));
 }
 
+std::unique_ptr<FrameSink> open_output_from(const World& world, const std::string& path, const std::string& source,
+                                            long step, bool& copied) {
+  io::OutputHeader header{world.dimension, world.h, world.scene_text, world.contactor_info, world.topologies, world.display};
+  auto writer = io::OutputWriter::create(path, header, world.state);
+  copied = writer->copy_first_frame(source, step);
+  return std::make_unique<Hdf5Sink>(std::move(writer));
+}
+
 long load_restart(World& world, const std::string& file, std::optional<long> frame) {
   const io::RestartFrame r = io::read_restart(file, frame, world.state);
+  io::check_restart(file, r, world.state, world.contacts ? world.contacts->contactors.size() : 0);
   if (world.contacts) world.contacts->restored();
   return r.step;
 }

@@ -16,6 +16,12 @@ namespace moreau::kernel {
 std::unique_ptr<FrameSink> open_output(const World& world, const std::string& path,
                                        std::optional<long> continue_after = std::nullopt);
 
+/// A restart into a new file: creates `path` with frame `step` of output file `source` as
+/// its first frame, copied as it is (`copied`; false when `source` is of an earlier format:
+/// the run must then write that frame itself).
+std::unique_ptr<FrameSink> open_output_from(const World& world, const std::string& path, const std::string& source,
+                                            long step, bool& copied);
+
 /// Loads the restart state of frame `frame` (default: the last complete one) of an
 /// output file into the world's state; returns the frame's step.
 long load_restart(World& world, const std::string& file, std::optional<long> frame);

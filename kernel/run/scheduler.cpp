@@ -6,6 +6,7 @@
 #include <moreau/node_fields.hpp>
 #include <ostream>
 
+#include "../plugin/boundary.hpp"
 #include "console.hpp"
 #include "progress.hpp"
 
@@ -46,7 +47,8 @@ class Context : public HookContext {
 Scheduler::Scheduler(World& world) : w_(world) {
   build_stages();
   for (auto& h : w_.hooks)
-    for (auto [stage, when] : h->points()) hooks_[static_cast<int>(stage)][static_cast<int>(when)].push_back(h.get());
+    for (auto [stage, when] : plugin_call(h.label(), "while listing its stages", [&] { return h->points(); }))
+      hooks_[static_cast<int>(stage)][static_cast<int>(when)].push_back(&h);
 }
 
 void Scheduler::build_stages() {
@@ -87,6 +89,25 @@ void Scheduler::build_stages() {
     for (auto& m : w_.models) m.integrator->update_dofs(c);
   };
   stages_[static_cast<int>(Stage::end_step)] = [](StepContext& c) { c.state.swap_depths(); };
+}
+
+std::string Scheduler::stage_owner(Stage s) const {
+  // The plugin whose code a stage runs, for the message of an exception that is not a
+  // moreau error (moreau errors keep their own text).
+  const std::string stage = "stage " + std::string(stage_name(s));
+  switch (s) {
+    case Stage::bulk:
+      return (w_.models.size() == 1 ? w_.models[0].modelization.label() : "a modelization plugin") + " (" + stage + ")";
+    case Stage::free_velocity:
+    case Stage::update_dofs:
+      return (w_.models.size() == 1 ? w_.models[0].integrator.label() : "an integrator plugin") + " (" + stage + ")";
+    case Stage::broad_phase: return w_.contacts->broadphase.label() + " (" + stage + ")";
+    case Stage::solve: return w_.contacts->solver.label() + " (" + stage + ")";
+    case Stage::external_forces: return "a force plugin (" + stage + ")";
+    case Stage::detection_configuration: return "a shape plugin (" + stage + ")";
+    case Stage::narrow_phase: return "a detector plugin (" + stage + ")";
+    default: return stage;
+  }
 }
 
 void Scheduler::apply_drivers(StepContext& ctx) {
@@ -151,7 +172,14 @@ RunSummary Scheduler::run(const RunOptions& opt) {
     if (list.empty()) return;
     const auto t0 = StageTimer::clock::now();
     Context hc(ctx, s, when, stop);
-    for (Hook* h : list) h->run(hc);
+    for (const Owned<Hook>* h : list) {
+      try {
+        (*h)->run(hc);
+      } catch (...) {
+        rethrow_kernel_owned(h->label(), "at step " + std::to_string(ctx.step + 1) + " (" +
+                                             (when == When::before ? "before" : "after") + " stage " + std::string(stage_name(s)) + ")");
+      }
+    }
     sum.timer.add_hooks(StageTimer::clock::now() - t0);
   };
 
@@ -185,7 +213,11 @@ RunSummary Scheduler::run(const RunOptions& opt) {
         }
       } else if (stages_[i]) {
         const auto t0 = StageTimer::clock::now();
-        stages_[i](ctx);
+        try {
+          stages_[i](ctx);
+        } catch (...) {
+          rethrow_kernel_owned(stage_owner(s), "at step " + std::to_string(step + 1));
+        }
         sum.timer.add(s, StageTimer::clock::now() - t0);
       }
       run_hooks(s, When::after);
@@ -200,7 +232,7 @@ RunSummary Scheduler::run(const RunOptions& opt) {
     break;
   }
   if (progress) progress->finish(step, static_cast<double>(step) * w_.h);
-  for (auto& h : w_.hooks) h->finish(w_.state);
+  for (auto& h : w_.hooks) plugin_call(h.label(), "at the end of the run", [&] { h->finish(w_.state); });
   if (opt.sink) opt.sink->close();
   sum.last_step = step;
   sum.stopped_by_hook = !stop.empty();

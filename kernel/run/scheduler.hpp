@@ -47,10 +47,11 @@ class Scheduler {
   void build_stages();
   void apply_drivers(StepContext& ctx);
   void check_finite(long step) const;
+  std::string stage_owner(Stage s) const;
 
   World& w_;
   std::array<StageFn, stage_count> stages_;
-  std::array<std::array<std::vector<Hook*>, 2>, stage_count> hooks_;
+  std::array<std::array<std::vector<const Owned<Hook>*>, 2>, stage_count> hooks_;
 };
 
 }  // namespace moreau::kernel

@@ -15,6 +15,7 @@
 
 #include "../analysis/analysis_build.hpp"
 #include "../contact/placement.hpp"
+#include "../plugin/boundary.hpp"
 #include "../run/console.hpp"
 #include "../text/did_you_mean.hpp"
 #include "display_build.hpp"
@@ -35,7 +36,15 @@ struct PluginUse {
   std::string name;
   Params params;
   std::string pointer;
+  bool valid = false;  ///< its parameters passed validation (else only its errors count)
 };
+
+/// A validated contactor's group; nullopt when the contactor has errors of its own (its
+/// `group` may then be any JSON value: it was reported, and must not be used).
+std::optional<std::string> group_of(const PluginUse& c) {
+  if (!c.valid || !c.params.has("group") || !c.params.json().at("group").is_string()) return std::nullopt;
+  return c.params.string("group");
+}
 
 class SceneChecker {
  public:
@@ -56,13 +65,26 @@ class SceneChecker {
     output_ = validate_object(top_.value("output", json::object()), scene_schema::output(), "/output", v);
     detection_ = validate_object(top_.value("detection", json::object()), scene_schema::detection(), "/detection", v,
                                  scene_schema::detection_plugin_keys());
+    if (output_.contains("file") && output_["file"].is_string() && output_["file"].get<std::string>().empty())
+      errors_.emplace_back("/output/file", "expected a file name, got an empty string");
 
     std::vector<std::string> scene_paths;
     if (top_.contains("plugin_paths") && top_["plugin_paths"].is_array())
       for (std::size_t i = 0; i < top_["plugin_paths"].size(); ++i) {
         const auto& p = top_["plugin_paths"][i];
-        if (p.is_string()) scene_paths.push_back(p.get<std::string>());
-        else errors_.emplace_back("/plugin_paths/" + std::to_string(i), "expected a folder path (string)");
+        const std::string ptr = "/plugin_paths/" + std::to_string(i);
+        if (!p.is_string()) {
+          errors_.emplace_back(ptr, "expected a folder path (string)");
+          continue;
+        }
+        scene_paths.push_back(p.get<std::string>());
+        // Relative to the scene's folder, as the registry resolves it.
+        std::error_code ec;
+        const fs::path folder = fs::path(scene_paths.back()).is_absolute()
+                                    ? fs::path(scene_paths.back())
+                                    : fs::absolute(fs::path(file_.path)).parent_path() / scene_paths.back();
+        if (!fs::is_directory(folder, ec))
+          errors_.emplace_back(ptr, "no folder " + folder.string() + " (relative paths start at the scene's folder)");
       }
     const fs::path scene_dir = fs::absolute(fs::path(file_.path)).parent_path();
     registry_ = std::make_unique<Registry>(Registry::standard_paths(scene_paths, scene_dir));
@@ -255,6 +277,9 @@ class SceneChecker {
       if (!analyses_.empty()) w->analyses = build_analyses(*w, reg, ctx, analyses_);
     } catch (const InputError& e) {
       throw e.with_file(file_.path);
+    } catch (...) {
+      // Still inside the World that keeps the plugins loaded (boundary.hpp).
+      rethrow_kernel_owned("a plugin", "while the scene was built");
     }
     return w;
   }
@@ -497,7 +522,7 @@ class SceneChecker {
       std::unique_ptr<Plugin> probe;
       if (m) {
         check_dimension(*m, ptr + "/model");
-        all.merge(body_schema(*m));
+        all.merge(body_schema(*m, ptr + "/model"));
       }
       json checked = validate_object(b, all, ptr, v);
       if (checked.contains("name") && checked["name"].is_string()) {
@@ -530,14 +555,19 @@ class SceneChecker {
 
   /// A modelization's body schema comes from an instance (it depends on the dimension),
   /// made once per modelization.
-  Schema body_schema(const RegistryEntry& m) {
+  Schema body_schema(const RegistryEntry& m, const std::string& ptr) {
     auto it = body_schemas_.find(m.registration.name);
     if (it != body_schemas_.end()) return it->second;
     BuildContext ctx;
     ctx.dimension = dim_;
-    auto obj = m.registration.factory(Params(json::object(), "/bodies"), ctx);
-    auto* model = dynamic_cast<Modelization*>(obj.get());
-    Schema s = model ? model->body_schema(dim_) : Schema{};
+    Schema s;
+    try {
+      auto obj = m.registration.factory(Params(json::object(), "/bodies"), ctx);
+      auto* model = dynamic_cast<Modelization*>(obj.get());
+      if (model) s = model->body_schema(dim_);
+    } catch (...) {
+      rethrow_kernel_owned_input(ptr, plugin_label(Kind::modelization, m.registration.name), "while giving its body keys");
+    }
     body_schemas_[m.registration.name] = s;
     return s;
   }
@@ -598,7 +628,9 @@ class SceneChecker {
     Schema all = scene_schema::contactor_kernel_keys(dim_);
     all.merge(e->registration.schema);
     Validation v{dim_, errors_};
+    const std::size_t before = errors_.size();
     use.params = Params(validate_object(c, all, ptr, v), ptr);
+    use.valid = errors_.size() == before;
     // A placement's rotation must be a rotation: same tolerance as a body's orientation.
     const json& q = use.params.json().value("orientation", json());
     if (dim_ == 3 && q.is_array() && q.size() == 4 && std::all_of(q.begin(), q.end(), [](const json& x) { return x.is_number(); })) {
@@ -680,7 +712,7 @@ class SceneChecker {
     std::set<std::string> groups;
     for (const auto& b : bodies_)
       for (const auto& c : b.contactors)
-        if (c.params.has("group")) groups.insert(c.params.string("group"));
+        if (auto g = group_of(c)) groups.insert(*g);
     insert_groups_of_unknown_shapes(groups);
     const json& is = top_["interactions"];
     for (std::size_t i = 0; i < is.size(); ++i) {
@@ -777,9 +809,10 @@ class SceneChecker {
       std::set<std::string> shapes_a, shapes_b;
       for (const auto& b : bodies_)
         for (const auto& c : b.contactors) {
-          if (!c.params.has("group")) continue;
-          if (c.params.string("group") == in.a) shapes_a.insert(c.name);
-          if (c.params.string("group") == in.b) shapes_b.insert(c.name);
+          const auto g = group_of(c);
+          if (!g) continue;
+          if (*g == in.a) shapes_a.insert(c.name);
+          if (*g == in.b) shapes_b.insert(c.name);
         }
       for (const auto& sa : shapes_a)
         for (const auto& sb : shapes_b) {
@@ -864,25 +897,27 @@ class SceneChecker {
 }  // namespace
 
 std::unique_ptr<World> build_world(const std::string& scene_path, const std::string& output_path) {
-  JsonFile file = read_json_file(scene_path);
+  return build_world(read_json_file(scene_path), output_path);
+}
+
+std::unique_ptr<World> build_world(const JsonFile& scene, const std::string& output_path) {
+  JsonFile file = scene;
   const Generated generated = expand_generators(file);  // `generators`: bodies appended first
   return generated.locate([&] {
     SceneChecker checker(file);
-    checker.check();
+    try {
+      checker.check();
+    } catch (...) {
+      rethrow_kernel_owned("a plugin", "while the scene was checked");  // the checker keeps them loaded
+    }
     return checker.build(output_path);
   });
 }
 
-void check_scene(JsonFile file) {
-  const Generated generated = expand_generators(file);
-  generated.locate([&] {
-    SceneChecker checker(file);
-    checker.check();
-    // Then build it (nothing is written): plugins check what a schema cannot say, such as
-    // degenerate shapes or inconsistent masses, in their constructors.
-    checker.build("");
-    return 0;
-  });
+void check_scene(const JsonFile& scene) {
+  // Built too (nothing is written): plugins check what a schema cannot say, such as
+  // degenerate shapes or inconsistent masses, in their constructors.
+  build_world(scene, "");
 }
 
 void check_scene(const std::string& scene_path) { check_scene(read_json_file(scene_path)); }

@@ -44,4 +44,49 @@ inline std::vector<std::string> frame_names(const std::string& file) {
   return names;
 }
 
+/// Paths (relative to `group`) of every dataset under group `group` of `file`, sorted.
+inline std::vector<std::string> datasets_under(const std::string& file, const std::string& group) {
+  std::vector<std::string> names;
+  hid_t f = H5Fopen(file.c_str(), H5F_ACC_RDONLY, H5P_DEFAULT);
+  if (f < 0) throw std::runtime_error("cannot open " + file);
+  hid_t g = H5Gopen2(f, group.c_str(), H5P_DEFAULT);
+  H5Ovisit(g, H5_INDEX_NAME, H5_ITER_INC,
+           [](hid_t, const char* name, const H5O_info_t* info, void* out) -> herr_t {
+             if (info->type == H5O_TYPE_DATASET) static_cast<std::vector<std::string>*>(out)->emplace_back(name);
+             return 0;
+           },
+           &names);
+  H5Gclose(g);
+  H5Fclose(f);
+  return names;
+}
+
+/// A numeric attribute of the object at `path`, as a double.
+inline double read_attribute(const std::string& file, const std::string& path, const std::string& name) {
+  hid_t f = H5Fopen(file.c_str(), H5F_ACC_RDONLY, H5P_DEFAULT);
+  if (f < 0) throw std::runtime_error("cannot open " + file);
+  hid_t a = H5Aopen_by_name(f, path.c_str(), name.c_str(), H5P_DEFAULT, H5P_DEFAULT);
+  double v = 0;
+  const herr_t rc = a < 0 ? -1 : H5Aread(a, H5T_NATIVE_DOUBLE, &v);
+  if (a >= 0) H5Aclose(a);
+  H5Fclose(f);
+  if (rc < 0) throw std::runtime_error("no attribute " + name + " on " + path + " in " + file);
+  return v;
+}
+
+/// Replaces dataset `path` of `file` by `values` as float64, in `rows` rows (1: a vector).
+inline void replace_doubles(const std::string& file, const std::string& path, const std::vector<double>& values,
+                            hsize_t rows = 0) {
+  hid_t f = H5Fopen(file.c_str(), H5F_ACC_RDWR, H5P_DEFAULT);
+  if (f < 0) throw std::runtime_error("cannot open " + file);
+  H5Ldelete(f, path.c_str(), H5P_DEFAULT);
+  const hsize_t dims[2] = {rows ? rows : values.size(), rows ? values.size() / rows : 1};
+  hid_t s = H5Screate_simple(rows ? 2 : 1, dims, nullptr);
+  hid_t d = H5Dcreate2(f, path.c_str(), H5T_IEEE_F64LE, s, H5P_DEFAULT, H5P_DEFAULT, H5P_DEFAULT);
+  H5Dwrite(d, H5T_NATIVE_DOUBLE, H5S_ALL, H5S_ALL, H5P_DEFAULT, values.data());
+  H5Dclose(d);
+  H5Sclose(s);
+  H5Fclose(f);
+}
+
 }  // namespace moreau_test

@@ -5,35 +5,12 @@
 #include <filesystem>
 #include <fstream>
 
+#include "bad_input.hpp"
 #include "cli_runner.hpp"
 #include "scenes.hpp"
 
 namespace fs = std::filesystem;
 using namespace moreau_test;
-
-namespace {
-
-/// Runs `moreau run` on `scene_text` and expects exit 2, `expected` in stderr, no output.
-void expect_bad_input(const std::string& name, const std::string& scene_text, const std::string& expected) {
-  const fs::path dir = scratch_dir(name);
-  const fs::path scene = write_file(dir, "scene.json", scene_text);
-  Result r = run_moreau({"run", scene.string()}, dir);
-  EXPECT_EQ(r.code, 2) << r.err;
-  EXPECT_NE(r.err.find(scene.string() + ": "), std::string::npos) << "message must name the file:\n" << r.err;
-  EXPECT_NE(r.err.find(expected), std::string::npos) << "expected: " << expected << "\ngot:\n" << r.err;
-  EXPECT_FALSE(fs::exists(dir / "out.h5")) << "bad input must leave no output";
-  Result c = run_moreau({"check", scene.string()}, dir);
-  EXPECT_EQ(c.code, 2) << c.err;
-  EXPECT_NE(c.err.find(expected), std::string::npos) << c.err;
-}
-
-std::string replace(std::string s, const std::string& from, const std::string& to) {
-  const auto p = s.find(from);
-  if (p == std::string::npos) throw std::logic_error("scene template has no " + from);
-  return s.replace(p, from.size(), to);
-}
-
-}  // namespace
 
 TEST(CliErrors, MalformedJson) {
   expect_bad_input("malformed", replace(projectile_scene(), "\"dimension\": 2,", "\"dimension\": 2,,"),

@@ -6,7 +6,9 @@
 #include <sys/wait.h>
 #include <unistd.h>
 
+#include <algorithm>
 #include <chrono>
+#include <cmath>
 #include <filesystem>
 #include <thread>
 
@@ -135,4 +137,85 @@ TEST(Restart, AfterSigkillTheFileIsReadableAndTheRunContinuesBitIdentically) {
   char name[16];
   std::snprintf(name, sizeof name, "%08ld", end);
   expect_same_frame((dir / "full.h5").string(), (dir / "cont.h5").string(), name);
+}
+
+TEST(Restart, IntoANewFileItsFirstFrameIsTheUninterruptedRunsContactsIncluded) {
+  // Once the new file's first frame was rewritten from the state: no contacts (they come
+  // from the step before) and no solver figures. Now it is the restart frame, copied.
+  const fs::path dir = scratch_dir("restart_first_frame");
+  const fs::path scene = write_file(dir, "scene.json", box_stack_scene());
+  ASSERT_EQ(run_moreau({"run", scene.string(), "--out", "full.h5", "--quiet"}, dir).code, 0);
+  ASSERT_EQ(run_moreau({"run", scene.string(), "--out", "part.h5", "--steps", "150", "--quiet"}, dir).code, 0);
+  Result r = run_moreau({"run", scene.string(), "--restart", "part.h5", "--out", "rest.h5", "--quiet"}, dir);
+  ASSERT_EQ(r.code, 0) << r.err;
+  const std::string full = (dir / "full.h5").string(), rest = (dir / "rest.h5").string();
+  EXPECT_EQ(frame_names(rest).front(), "00000150");
+  for (const char* frame : {"/frames/00000150", "/frames/00000300"}) {
+    const auto names = datasets_under(full, frame);
+    ASSERT_EQ(names, datasets_under(rest, frame)) << frame;
+    EXPECT_NE(std::find(names.begin(), names.end(), "contacts/key"), names.end());
+    for (const auto& n : names) {
+      const auto a = read_doubles(full, std::string(frame) + "/" + n), b = read_doubles(rest, std::string(frame) + "/" + n);
+      ASSERT_EQ(a.size(), b.size()) << frame << "/" << n;
+      for (std::size_t i = 0; i < a.size(); ++i) EXPECT_EQ(a[i], b[i]) << frame << "/" << n << "[" << i << "]";
+    }
+    for (const char* attr : {"iterations", "error"})
+      EXPECT_EQ(read_attribute(full, std::string(frame) + "/solver", attr), read_attribute(rest, std::string(frame) + "/solver", attr))
+          << frame << " solver " << attr;
+  }
+}
+
+TEST(Restart, ADamagedFileIsRefusedAtTheStartNamingTheDataset) {
+  // Once accepted (garbage contact keys) or failed mid-run as exit 1 (a NaN orientation).
+  const fs::path dir = scratch_dir("restart_damaged");
+  const fs::path scene = write_file(dir, "scene.json", box_stack_scene());
+  ASSERT_EQ(run_moreau({"run", scene.string(), "--out", "part.h5", "--steps", "150", "--quiet"}, dir).code, 0);
+  const std::string part = (dir / "part.h5").string(), frame = "/frames/00000150";
+  const auto keys = read_doubles(part, frame + "/contacts/key");
+  // The nodes' fields are read from the set's group (/frames/N/orientation is a link to it).
+  const std::string nodes = frame + "/rigid.nodes";
+  const auto q = read_doubles(part, nodes + "/orientation");
+  struct Case {
+    const char* name;
+    std::string dataset;
+    std::vector<double> values;
+    hsize_t rows;
+    const char* message;
+  };
+  auto with = [](std::vector<double> v, std::size_t k, double x) {
+    v.at(k) = x;
+    return v;
+  };
+  const std::size_t nc = keys.size() / 3;
+  const Case cases[] = {
+      {"key_big", frame + "/contacts/key", with(keys, 0, 1e12), nc, "is not a contact identity"},
+      {"key_other", frame + "/contacts/key", with(keys, 1, 999), nc, "names contactor 999; the scene has 4"},
+      {"key_frac", frame + "/contacts/key", with(keys, 2, 0.5), nc, "is not a contact identity"},
+      {"impulse", frame + "/contacts/impulse", with(read_doubles(part, frame + "/contacts/impulse"), 4, std::nan("")), nc,
+       "row 1 is not finite"},
+      {"q_nan", nodes + "/orientation", with(q, 5, std::nan("")), 4, "row 1 is not finite"},
+      {"q_norm", nodes + "/orientation", with(q, 4, 2.0), 4, "row 1 is not a unit quaternion"},
+      {"shape", nodes + "/position", {0, 0, 0}, 1, "expected 12 values (4 rows of 3), found 3"},
+  };
+  for (const auto& c : cases) {
+    const std::string copy = (dir / (std::string(c.name) + ".h5")).string();
+    fs::copy_file(part, copy, fs::copy_options::overwrite_existing);
+    replace_doubles(copy, c.dataset, c.values, c.rows);
+    Result r = run_moreau({"run", scene.string(), "--restart", copy, "--out", "rest.h5", "--quiet"}, dir);
+    EXPECT_EQ(r.code, 2) << c.name << ": " << r.err;
+    EXPECT_NE(r.err.find(copy + ": at " + c.dataset + ": "), std::string::npos) << c.name << ": " << r.err;
+    EXPECT_NE(r.err.find(c.message), std::string::npos) << c.name << ": " << r.err;
+    EXPECT_FALSE(fs::exists(dir / "rest.h5")) << c.name << ": bad input leaves no output";
+  }
+  // A group under /frames that is not a frame.
+  const std::string odd = (dir / "odd.h5").string();
+  fs::copy_file(part, odd);
+  {
+    hid_t f = H5Fopen(odd.c_str(), H5F_ACC_RDWR, H5P_DEFAULT);
+    H5Gclose(H5Gcreate2(f, "/frames/latest", H5P_DEFAULT, H5P_DEFAULT, H5P_DEFAULT));
+    H5Fclose(f);
+  }
+  Result r = run_moreau({"run", scene.string(), "--restart", odd, "--out", "rest.h5", "--quiet"}, dir);
+  EXPECT_EQ(r.code, 2) << r.err;
+  EXPECT_NE(r.err.find("at /frames/latest: not a frame"), std::string::npos) << r.err;
 }

@@ -300,7 +300,7 @@ TEST(ExportProblems, TheReaderTakesTheGuessButNeverTheSolution) {
   EXPECT_TRUE(Eigen::MatrixXd(b.local.W).isApprox(Eigen::MatrixXd(p.W)));
   EXPECT_EQ(b.local.q, p.q);
   EXPECT_LT(eigen(read_doubles(both, "/solution/u")).norm(), 1e-15);  // u = W r + q, recomputed by the writer
-  EXPECT_FALSE(fs::exists(both + ".tmp"));
+  EXPECT_FALSE(fs::exists(both + ".part"));
 }
 
 TEST(ExportProblems, TheExampleSceneExportsItsSteps) {

@@ -96,7 +96,7 @@ TEST(Fclib, ReductionOfAGlobalProblemMatchesItsDefinition) {
 TEST(Fclib, MalformedFilesNameTheHdf5PathOfTheFault) {
   EXPECT_NE(fault_of(write_local("index.hdf5", "index")).find("at /fclib_local/W/i: entry 2 = 7.000000 is not an index below 3"),
             std::string::npos) << fault_of(write_local("index.hdf5", "index"));
-  EXPECT_NE(fault_of(write_local("dims.hdf5", "dims")).find("at /fclib_local/W: W is 3x4, expected 3x3"), std::string::npos);
+  EXPECT_NE(fault_of(write_local("dims.hdf5", "dims")).find("at /fclib_local/W: the matrix is 3x4, expected 3x3"), std::string::npos);
   EXPECT_NE(fault_of(write_local("mu.hdf5", "mu")).find("at /fclib_local/vectors/mu: friction coefficient 0 is -0.3"),
             std::string::npos);
   EXPECT_NE(fault_of(write_local("no_q.hdf5", "no_q")).find("at /fclib_local/vectors/q: missing dataset"), std::string::npos);

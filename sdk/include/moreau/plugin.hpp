@@ -24,6 +24,7 @@
 #include <cstdint>
 #include <functional>
 #include <memory>
+#include <stdexcept>
 #include <moreau/params.hpp>
 #include <moreau/schema.hpp>
 #include <moreau/version.hpp>
@@ -106,14 +107,41 @@ __attribute__((visibility("hidden"))) inline std::vector<Registration>& local_re
   static std::vector<Registration> list;
   return list;
 }
+/// What went wrong registering this library's plugins (a schema() that threw): static
+/// constructors run inside the dynamic loader, where an exception cannot be caught and ends
+/// the process, so AutoRegister keeps the message and register_all reports it to the kernel.
+__attribute__((visibility("hidden"))) inline std::vector<std::string>& local_registration_errors() {
+  static std::vector<std::string> list;
+  return list;
+}
 template <class T>
 struct AutoRegister {
-  explicit AutoRegister(const char* name) {
-    local_registrations().push_back(Registration{
-        T::kind, name, T::doc, T::schema(),
-        [](const Params& p, const BuildContext& c) -> std::unique_ptr<Plugin> { return std::make_unique<T>(p, c); }});
+  explicit AutoRegister(const char* name) noexcept {
+    try {
+      local_registrations().push_back(Registration{
+          T::kind, name, T::doc, T::schema(),
+          [](const Params& p, const BuildContext& c) -> std::unique_ptr<Plugin> { return std::make_unique<T>(p, c); }});
+    } catch (const std::exception& e) {
+      note(name, e.what());
+    } catch (...) {
+      note(name, "an exception that is not a std::exception");
+    }
+  }
+  static void note(const char* name, const char* what) noexcept {
+    try {
+      local_registration_errors().push_back(std::string(kind_name(T::kind)) + " '" + name + "' threw: " + what);
+    } catch (...) {
+    }
   }
 };
+/// Called by register_all: the registrations that failed, as one error for the kernel.
+inline void throw_registration_errors() {
+  const auto& errors = local_registration_errors();
+  if (errors.empty()) return;
+  std::string s;
+  for (std::size_t i = 0; i < errors.size(); ++i) s += (i ? "; " : "") + errors[i];
+  throw std::runtime_error(s);
+}
 }  // namespace detail
 
 }  // namespace moreau
@@ -139,6 +167,7 @@ extern "C" struct moreau_manifest {
 #define MOREAU_PLUGIN_LIBRARY(LIBNAME)                                                       \
   namespace moreau_plugin_entry {                                                           \
   static void register_all(::moreau::Registrar& r) {                                        \
+    ::moreau::detail::throw_registration_errors();                                           \
     for (auto& reg : ::moreau::detail::local_registrations()) r.add(reg);                    \
   }                                                                                          \
   static const moreau_manifest manifest{MOREAU_ABI_VERSION, MOREAU_SDK_VERSION, MOREAU_BUILD_ID, \

@@ -688,7 +688,8 @@ Mesh build(const RawMesh& raw, const std::string& file) {
     faces[name].add(type, std::span<const int>(nodes.data(), e.type->nodes));
     face_source[name].push_back(r);
   }
-  for (auto& [name, cells] : faces) {
+  for (auto& [group, cells] : faces) {
+    const std::string& name = group;  // clang 14 cannot capture a structured binding
     const auto& source = face_source[name];
     mesh.boundary_sets[name] = match_facets(mesh, cells, [&](int f) {
       const RawElement& e = raw.elements[source[f]];
