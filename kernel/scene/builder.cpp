@@ -755,7 +755,7 @@ class SceneChecker {
     }
     for (const auto& [group, count] : contactors) {
       const bool paired = std::any_of(interactions_.begin(), interactions_.end(),
-                                      [&](const InteractionUse& in) { return in.a == group || in.b == group; });
+                                      [&g = group](const InteractionUse& in) { return in.a == g || in.b == g; });
       if (!paired)
         warn(file_.path + ": " + std::to_string(count) + " contactor" + (count == 1 ? "" : "s") + " of group \"" + group +
              "\" " + (count == 1 ? "is" : "are") + " in no interaction: nothing will collide with " +
@@ -785,8 +785,8 @@ class SceneChecker {
     };
     for (const auto& [name, use] : laws_) {
       if (!above(use.params, "restitution", 0.8) || !above(use.params, "friction", 0)) continue;
-      const auto in = std::find_if(interactions_.begin(), interactions_.end(), [&](const InteractionUse& i) {
-        return i.law == name && (eccentric.count(i.a) || eccentric.count(i.b));
+      const auto in = std::find_if(interactions_.begin(), interactions_.end(), [&, &law = name](const InteractionUse& i) {
+        return i.law == law && (eccentric.count(i.a) || eccentric.count(i.b));
       });
       if (in == interactions_.end()) continue;
       std::ostringstream os;
