@@ -14,7 +14,13 @@ namespace {
 /// n numbers at key `k` of object o (or `fallback` when absent).
 std::vector<double> numbers(const json& o, const char* k, std::size_t n, const std::string& ptr, const std::string& why,
                             std::vector<double> fallback) {
-  if (!o.contains(k)) return fallback;
+  if (!o.contains(k)) {
+    // An empty fallback marks a key the shape needs (radius, length, size…): callers index it.
+    if (fallback.empty())
+      throw InputError(ptr + "/" + k, "missing: expected " + std::to_string(n) +
+                                          " number(s) to keep clear of this body (" + why + ")");
+    return fallback;
+  }
   const json& v = o[k];
   if (v.is_number() && n == 1) return {v.get<double>()};
   if (!v.is_array() || v.size() != n || !std::all_of(v.begin(), v.end(), [](const json& x) { return x.is_number(); }))
