@@ -19,6 +19,7 @@ struct RunArgs {
 int command_run(const RunArgs& args, std::ostream& out, std::ostream& err);
 int command_check(const std::string& scene, std::ostream& out, std::ostream& err);
 int command_plugins(bool as_json, std::ostream& out, std::ostream& err);
+int command_generate(const std::string& scene, const std::string& out_path, std::ostream& out, std::ostream& err);
 
 /// Runs `body` and maps exceptions to messages and exit codes.
 template <class F>

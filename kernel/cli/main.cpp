@@ -83,6 +83,11 @@ int main(int argc, char** argv) {
   auto* check_cmd = app.add_subcommand("check", "validate a scene (every error at once)");
   check_cmd->add_option("scene", check_scene, "scene file")->required();
 
+  std::string generate_scene, generate_out;
+  auto* generate_cmd = app.add_subcommand("generate", "run a scene's generators and write it as a plain scene");
+  generate_cmd->add_option("scene", generate_scene, "scene file with `generators`")->required();
+  generate_cmd->add_option("--out", generate_out, "the scene with the generated bodies listed (JSON)")->required();
+
   bool as_json = false;
   auto* plugins_cmd = app.add_subcommand("plugins", "list every plugin by kind, with its parameters");
   plugins_cmd->add_flag("--json", as_json, "as JSON");
@@ -103,6 +108,7 @@ int main(int argc, char** argv) {
   if (*run_cmd) return command_run(run, std::cout, std::cerr);
   if (*check_cmd) return command_check(check_scene, std::cout, std::cerr);
   if (*plugins_cmd) return command_plugins(as_json, std::cout, std::cerr);
+  if (*generate_cmd) return command_generate(generate_scene, generate_out, std::cout, std::cerr);
   if (*solve_cmd) return command_fclib_solve(fclib, std::cout, std::cerr);
   return 2;
 }

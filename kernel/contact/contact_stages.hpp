@@ -79,6 +79,9 @@ class ContactStages {
 
   long last_iterations() const { return report_.iterations; }
   double last_error() const { return report_.error; }
+  /// μ of each contact in the last solve (rows of the `contacts` set), as its law chose it
+  /// for that step (static or dynamic friction): what the analyses compare the forces with.
+  const Eigen::VectorXd& last_friction() const { return problem_.mu; }
   /// A restart loaded the `contacts` set (keys and what persists) from its frame: the next
   /// warm start continues from it, and the start-of-run overlap warning is not given.
   void restored() { initial_overlaps_checked_ = true; }

@@ -546,17 +546,69 @@ bool OutputWriter::copy_first_frame(const std::string& source, long step) {
   return true;
 }
 
-void OutputWriter::write_frame(long step, double time, const State& state, long iterations, double error) {
+namespace {
+
+/// Opens or creates each group of `path` ("a/b/c") under `where`.
+h5::Id make_groups(hid_t where, const std::string& path) {
+  h5::Id g = h5::group(H5Gopen2(where, ".", H5P_DEFAULT));
+  std::size_t start = 0;
+  while (start < path.size()) {
+    std::size_t end = path.find('/', start);
+    if (end == std::string::npos) end = path.size();
+    const std::string part = path.substr(start, end - start);
+    if (!part.empty()) {
+      const bool there = H5Lexists(g.get(), part.c_str(), H5P_DEFAULT) > 0;
+      h5::Id next = h5::group(there ? H5Gopen2(g.get(), part.c_str(), H5P_DEFAULT)
+                                    : H5Gcreate2(g.get(), part.c_str(), H5P_DEFAULT, H5P_DEFAULT, H5P_DEFAULT));
+      if (!next) throw RunError("HDF5 write failed: group " + path);
+      g = std::move(next);
+    }
+    start = end + 1;
+  }
+  return g;
+}
+
+/// A frame's extra groups (analyses): numbers of any rank, or strings.
+void write_frame_group(hid_t frame, const FrameGroup& group) {
+  h5::Id g = make_groups(frame, group.path);
+  for (const auto& [key, value] : group.attributes) h5::attribute_string(g.get(), key, value);
+  for (const auto& ds : group.datasets) {
+    const auto slash = ds.name.rfind('/');
+    h5::Id parent = slash == std::string::npos ? make_groups(g.get(), "") : make_groups(g.get(), ds.name.substr(0, slash));
+    const std::string leaf = slash == std::string::npos ? ds.name : ds.name.substr(slash + 1);
+    if (!ds.strings.empty()) {
+      h5::write_strings(parent.get(), leaf, ds.strings);
+      continue;
+    }
+    std::vector<hsize_t> dims(ds.shape.begin(), ds.shape.end());
+    hsize_t n = 1;
+    for (hsize_t x : dims) n *= x;
+    if (n != ds.values.size())
+      throw std::logic_error("frame dataset " + group.path + "/" + ds.name + ": shape does not match its values");
+    h5::Id sp = h5::space(dims.empty() ? H5Screate(H5S_SCALAR) : H5Screate_simple(static_cast<int>(dims.size()), dims.data(), nullptr));
+    h5::Id d = h5::dataset(H5Dcreate2(parent.get(), leaf.c_str(), H5T_IEEE_F64LE, sp.get(), H5P_DEFAULT, H5P_DEFAULT, H5P_DEFAULT));
+    if (!d) throw RunError("HDF5 write failed: dataset " + group.path + "/" + ds.name);
+    if (n > 0 && H5Dwrite(d.get(), H5T_NATIVE_DOUBLE, H5S_ALL, H5S_ALL, H5P_DEFAULT, ds.values.data()) < 0)
+      throw RunError("HDF5 write failed: dataset " + group.path + "/" + ds.name);
+    if (!ds.units.empty()) h5::attribute_string(d.get(), "units", ds.units);
+  }
+}
+
+}  // namespace
+
+void OutputWriter::write_frame(long step, double time, const State& state, long iterations, double error,
+                               const std::vector<FrameGroup>& extra) {
   Impl& m = *impl_;
   if (m.failed) throw RunError("the output file " + m.path + " could not be written");
   try {
-    write_frame_file(step, time, state, iterations, error);
+    write_frame_file(step, time, state, iterations, error, extra);
   } catch (const std::exception& e) {
     m.fail(e);
   }
 }
 
-void OutputWriter::write_frame_file(long step, double time, const State& state, long iterations, double error) {
+void OutputWriter::write_frame_file(long step, double time, const State& state, long iterations, double error,
+                                    const std::vector<FrameGroup>& extra) {
   Impl& m = *impl_;
   const std::string name = frame_name(step);
   const std::string file = m.frame_file(step);
@@ -609,6 +661,7 @@ void OutputWriter::write_frame_file(long step, double time, const State& state, 
     h5::attribute_long(solver.get(), "iterations", iterations);
     h5::attribute_double(solver.get(), "error", error);
     if (m.header.display) write_display_frame(g.get(), *m.header.display, state);
+    for (const auto& group : extra) write_frame_group(g.get(), group);
   }
   finish(f, part);
   publish_file(part, file);

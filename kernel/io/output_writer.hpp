@@ -34,6 +34,7 @@
 #include <moreau/state.hpp>
 #include <optional>
 #include <string>
+#include <utility>
 #include <vector>
 
 #include "display.hpp"
@@ -75,6 +76,24 @@ struct OutputHeader {
   std::shared_ptr<const DisplayMeshes> display;
 };
 
+/// A named dataset added to a frame by a producer other than the State (analyses): written
+/// at /frames/NNNNNNNN/<group path>/<name>; `name` may hold '/' (subgroups). Numbers
+/// (`values`, row-major in `shape`; empty shape: a scalar) or strings (1-D).
+struct FrameDataset {
+  std::string name;
+  std::vector<std::size_t> shape;
+  std::vector<double> values;
+  std::vector<std::string> strings;
+  std::string units;  ///< the dataset's `units` attribute, if not empty
+};
+
+/// A group of such datasets (e.g. "analyses/stress"), with string attributes.
+struct FrameGroup {
+  std::string path;
+  std::vector<std::pair<std::string, std::string>> attributes;
+  std::vector<FrameDataset> datasets;
+};
+
 class OutputWriter {
  public:
   /// A new file (replacing any file at `path`). Unwritable path, or another run writing
@@ -93,7 +112,9 @@ class OutputWriter {
   // complete frame with OUT.h5.frames/ beside it, as after a killed run (the message says
   // how to continue). No later call writes anything.
 
-  void write_frame(long step, double time, const State& state, long solver_iterations, double solver_error);
+  /// `extra`: groups added to the frame (analyses), written after the State's sets.
+  void write_frame(long step, double time, const State& state, long solver_iterations, double solver_error,
+                   const std::vector<FrameGroup>& extra = {});
   /// A new file's first frame copied as it is from frame `step` of output file `source`: a
   /// restart into a new file starts with its restart frame, contacts and solver figures
   /// included, bit-identical to the uninterrupted run's (they cannot be recomputed without
@@ -107,7 +128,8 @@ class OutputWriter {
  private:
   struct Impl;
   explicit OutputWriter(std::unique_ptr<Impl> impl);
-  void write_frame_file(long step, double time, const State& state, long solver_iterations, double solver_error);
+  void write_frame_file(long step, double time, const State& state, long solver_iterations, double solver_error,
+                        const std::vector<FrameGroup>& extra);
   std::unique_ptr<Impl> impl_;
 };
 

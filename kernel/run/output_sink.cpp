@@ -14,8 +14,9 @@ namespace {
 class Hdf5Sink : public FrameSink {
  public:
   explicit Hdf5Sink(std::unique_ptr<io::OutputWriter> w) : w_(std::move(w)) {}
-  void write_frame(long step, double time, const State& state, const SolverInfo& solver) override {
-    w_->write_frame(step, time, state, solver.iterations, solver.error);
+  void write_frame(long step, double time, const State& state, const SolverInfo& solver,
+                   const std::vector<io::FrameGroup>& extra) override {
+    w_->write_frame(step, time, state, solver.iterations, solver.error, extra);
   }
   void close() override { w_->close(); }
 

@@ -172,7 +172,8 @@ RunSummary Scheduler::run(const RunOptions& opt) {
     check_finite(step);
     const auto t0 = StageTimer::clock::now();
     const SolverInfo solver = w_.contacts ? SolverInfo{w_.contacts->last_iterations(), w_.contacts->last_error()} : SolverInfo{};
-    opt.sink->write_frame(step, static_cast<double>(step) * w_.h, w_.state, solver);
+    const auto extra = w_.analyses ? w_.analyses->at_frame(w_, step) : std::vector<io::FrameGroup>{};
+    opt.sink->write_frame(step, static_cast<double>(step) * w_.h, w_.state, solver, extra);
     sum.timer.add(Stage::output, StageTimer::clock::now() - t0);
   };
   auto run_hooks = [&](Stage s, When when) {
@@ -212,6 +213,11 @@ RunSummary Scheduler::run(const RunOptions& opt) {
       run_hooks(s, When::before);
       if (s == Stage::output) {
         const long done = step + 1;
+        if (w_.analyses) {  // some need every step (energy dissipated between frames)
+          const auto t0 = StageTimer::clock::now();
+          w_.analyses->after_step(w_, done);
+          sum.timer.add(Stage::output, StageTimer::clock::now() - t0);
+        }
         const bool due = done % w_.output.every == 0 || done == last || !stop.empty();
         if (due) {
           write(done);

@@ -12,6 +12,7 @@
 #include <string>
 #include <vector>
 
+#include "../analysis/analysis_runner.hpp"
 #include "../contact/contact_stages.hpp"
 #include "../io/display.hpp"
 #include "../io/output_writer.hpp"
@@ -69,6 +70,7 @@ struct World {
   std::vector<io::ContactorInfo> contactor_info;  ///< every contactor and its placement, for the output header
   std::shared_ptr<const io::DisplayMeshes> display;  ///< the shapes drawn in the viewer; null: points only
   std::vector<io::SetTopology> topologies;  ///< the modelizations' element topologies, for the output
+  std::unique_ptr<AnalysisRunner> analyses;  ///< the scene's `analyses`; null when it has none
 
   explicit World(int dim = 3) : state(dim) {}
 };

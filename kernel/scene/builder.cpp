@@ -13,11 +13,13 @@
 #include <set>
 #include <sstream>
 
+#include "../analysis/analysis_build.hpp"
 #include "../contact/placement.hpp"
 #include "../plugin/boundary.hpp"
 #include "../run/console.hpp"
 #include "../text/did_you_mean.hpp"
 #include "display_build.hpp"
+#include "generate.hpp"
 #include "json_file.hpp"
 #include "scene_schema.hpp"
 #include "validate.hpp"
@@ -65,8 +67,6 @@ class SceneChecker {
                                  scene_schema::detection_plugin_keys());
     if (output_.contains("file") && output_["file"].is_string() && output_["file"].get<std::string>().empty())
       errors_.emplace_back("/output/file", "expected a file name, got an empty string");
-    if (top_.contains("generators") && top_["generators"].is_array() && !top_["generators"].empty())
-      errors_.emplace_back("/generators", "no body generator plugins are available yet: list the bodies in \"bodies\"");
 
     std::vector<std::string> scene_paths;
     if (top_.contains("plugin_paths") && top_["plugin_paths"].is_array())
@@ -96,6 +96,7 @@ class SceneChecker {
     check_interactions();
     check_plugin_list(Kind::force, "forces", forces_);
     check_plugin_list(Kind::hook, "hooks", hooks_);
+    check_analyses();
     if (!top_["solver"].empty() || has_interactions()) {
       solver_ = plugin_use(Kind::solver, top_["solver"], "/solver", "auto", {"on_failure"});
       const json& sv = top_["solver"];
@@ -277,6 +278,7 @@ class SceneChecker {
       ctx.state = &w->state;
       for (const auto& f : forces_) w->forces.push_back(reg.create<Force>(f.name, f.params, ctx, f.pointer));
       for (const auto& h : hooks_) w->hooks.push_back(reg.create<Hook>(h.name, h.params, ctx, h.pointer));
+      if (!analyses_.empty()) w->analyses = build_analyses(*w, reg, ctx, analyses_);
     } catch (const InputError& e) {
       throw e.with_file(file_.path);
     } catch (...) {
@@ -833,7 +835,7 @@ class SceneChecker {
     }
     for (const auto& [group, count] : contactors) {
       const bool paired = std::any_of(interactions_.begin(), interactions_.end(),
-                                      [&](const InteractionUse& in) { return in.a == group || in.b == group; });
+                                      [&g = group](const InteractionUse& in) { return in.a == g || in.b == g; });
       if (!paired)
         warn(file_.path + ": " + std::to_string(count) + " contactor" + (count == 1 ? "" : "s") + " of group \"" + group +
              "\" " + (count == 1 ? "is" : "are") + " in no interaction: nothing will collide with " +
@@ -863,8 +865,8 @@ class SceneChecker {
     };
     for (const auto& [name, use] : laws_) {
       if (!above(use.params, "restitution", 0.8) || !above(use.params, "friction", 0)) continue;
-      const auto in = std::find_if(interactions_.begin(), interactions_.end(), [&](const InteractionUse& i) {
-        return i.law == name && (eccentric.count(i.a) || eccentric.count(i.b));
+      const auto in = std::find_if(interactions_.begin(), interactions_.end(), [&, &law = name](const InteractionUse& i) {
+        return i.law == law && (eccentric.count(i.a) || eccentric.count(i.b));
       });
       if (in == interactions_.end()) continue;
       std::ostringstream os;
@@ -922,6 +924,19 @@ class SceneChecker {
     }
   }
 
+  /// `analyses`: each a plugin entry whose kernel keys (name, region, every) are checked
+  /// in kernel/analysis (docs/analyses.md).
+  void check_analyses() {
+    if (!top_["analyses"].is_array()) return;
+    const json& list = top_["analyses"];
+    for (std::size_t i = 0; i < list.size(); ++i) {
+      const std::string ptr = "/analyses/" + std::to_string(i);
+      PluginUse use = plugin_use(Kind::analysis, list[i], ptr, "", analysis_kernel_keys());
+      analyses_.push_back(AnalysisEntry{use.name, use.params, ptr, list[i]});
+    }
+    check_analysis_entries(analyses_, dim_, errors_);
+  }
+
   void check_plugin_list(Kind kind, const char* key, std::vector<PluginUse>& out) {
     if (!top_[key].is_array()) return;
     const json& list = top_[key];
@@ -955,6 +970,7 @@ class SceneChecker {
   std::map<std::pair<std::string, std::string>, std::pair<std::string, bool>> detector_uses_;
   bool stop_on_failure_ = false;
   std::vector<PluginUse> forces_, hooks_;
+  std::vector<AnalysisEntry> analyses_;
   std::optional<json> export_;  ///< validated `export_problems`, steps sorted and unique
 };
 
@@ -964,22 +980,26 @@ std::unique_ptr<World> build_world(const std::string& scene_path, const std::str
   return build_world(read_json_file(scene_path), output_path);
 }
 
-std::unique_ptr<World> build_world(const JsonFile& file, const std::string& output_path) {
-  SceneChecker checker(file);
-  try {
-    checker.check();
-  } catch (...) {
-    rethrow_kernel_owned("a plugin", "while the scene was checked");  // the checker keeps them loaded
-  }
-  return checker.build(output_path);
+std::unique_ptr<World> build_world(const JsonFile& scene, const std::string& output_path) {
+  JsonFile file = scene;
+  const Generated generated = expand_generators(file);  // `generators`: bodies appended first
+  return generated.locate([&] {
+    SceneChecker checker(file);
+    try {
+      checker.check();
+    } catch (...) {
+      rethrow_kernel_owned("a plugin", "while the scene was checked");  // the checker keeps them loaded
+    }
+    return checker.build(output_path);
+  });
+}
+
+void check_scene(const JsonFile& scene) {
+  // Built too (nothing is written): plugins check what a schema cannot say, such as
+  // degenerate shapes or inconsistent masses, in their constructors.
+  build_world(scene, "");
 }
 
 void check_scene(const std::string& scene_path) { check_scene(read_json_file(scene_path)); }
-
-void check_scene(const JsonFile& file) {
-  // Built too (nothing is written): plugins check what a schema cannot say, such as
-  // degenerate shapes or inconsistent masses, in their constructors.
-  build_world(file, "");
-}
 
 }  // namespace moreau::kernel

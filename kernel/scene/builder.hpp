@@ -16,8 +16,8 @@ std::unique_ptr<World> build_world(const std::string& scene_path, const std::str
 /// Validates and builds the scene without running or writing anything (what `moreau check`
 /// runs). Same errors as build_world.
 void check_scene(const std::string& scene_path);
-
-/// The same from a scene already read (the fuzz target parses its input itself).
+/// The same from a scene already read (the fuzz target parses its input itself; `moreau
+/// generate` checks the scene it expanded). Generators are expanded first.
 std::unique_ptr<World> build_world(const JsonFile& scene, const std::string& output_path = "");
 void check_scene(const JsonFile& scene);
 

@@ -13,7 +13,10 @@ Schema top() {
   s.object("laws", "named contact laws: {name: {type, ...}}").fallback(nlohmann::json::object());
   s.array("bodies", "the bodies");
   s.object("models", "per modelization the bodies name: {name: {integrator, ...its parameters}}").optional();
-  s.array("generators", "body generators (none are available yet: must be empty)").fallback(nlohmann::json::array());
+  s.array("generators", "generator plugins making bodies before the scene is read: [{type, ...}] (docs/analyses.md)")
+      .fallback(nlohmann::json::array());
+  s.array("analyses", "analysis plugins run at output frames: [{type, name, region, every, ...}] (docs/analyses.md)")
+      .fallback(nlohmann::json::array());
   s.array("drivers", "imposed velocities: [{body, velocity, angular_velocity, start, end}]").fallback(nlohmann::json::array());
   s.array("forces", "external-force plugins: [{type, ...}]").fallback(nlohmann::json::array());
   s.array("interactions", "which contactor groups interact, and by which law: [{groups, law}]").fallback(nlohmann::json::array());

@@ -9,6 +9,7 @@
 #include <cmath>
 #include <sstream>
 
+#include "incline_scene.hpp"
 #include "run_scene.hpp"
 
 using namespace moreau_test;
@@ -19,34 +20,11 @@ constexpr double g = 9.81;
 
 /// Downhill acceleration of a block resting on an incline of angle alpha.
 double block_acceleration(int dim, double alpha, double mu) {
-  std::ostringstream s;
-  s.precision(17);
-  const double nx = std::sin(alpha), nz = std::cos(alpha);  // incline normal
-  s << R"({"format": "moreau-scene/1", "dimension": )" << dim << R"(, "time": {"step": 1e-3, "duration": 0.5},
-  "gravity": )" << (dim == 2 ? "[0, -9.81]" : "[0, 0, -9.81]") << R"(, "materials": {"m": {"density": 1000}},
-  "laws": {"rough": {"type": "coulomb", "friction": )" << mu << R"(}},
-  "interactions": [{"groups": ["block", "slope"], "law": "rough"}],
-  "solver": {"type": "nlgs", "tolerance": 1e-12, "max_iterations": 500}, "output": {"every": 100}, "bodies": [)";
-  if (dim == 2) {
-    // A long slab whose top face passes through the origin, and a 0.2 × 0.1 block on it.
-    s << R"({"name": "slope", "fixed": true, "position": [)" << -0.1 * nx << ", " << -0.1 * nz << R"(], "angle": )" << -alpha
-      << R"(, "contactors": [{"shape": "polygon", "vertices": [[-10, -0.1], [10, -0.1], [10, 0.1], [-10, 0.1]], "group": "slope"}]},
-      {"name": "block", "material": "m", "position": [)" << 0.05 * nx << ", " << 0.05 * nz << R"(], "angle": )" << -alpha
-      << R"(, "contactors": [{"shape": "polygon", "vertices": [[-0.1, -0.05], [0.1, -0.05], [0.1, 0.05], [-0.1, 0.05]], "group": "block"}]}]})";
-  } else {
-    s << R"({"name": "slope", "fixed": true, "position": [0, 0, 0], "contactors": [{"shape": "plane", "normal": [)" << nx
-      << ", 0, " << nz << R"(], "group": "slope"}]},
-      {"name": "block", "material": "m", "position": [)" << 0.05 * nx << ", 0, " << 0.05 * nz << R"(], "orientation": [)"
-      << std::cos(alpha / 2) << ", 0, " << std::sin(alpha / 2) << R"(, 0],
-       "contactors": [{"shape": "box", "size": [0.2, 0.2, 0.1], "group": "block"}]}]})";
-  }
-  SceneRun run = run_scene(dim == 2 ? "block_incline_2d" : "block_incline_3d", s.str());
-  auto speed = [&](const std::string& f) {
-    const auto v = run.at(f, "velocity");
-    const double vx = v[dim], vz = v[dim + dim - 1];  // the block is body 1
-    return vx * std::cos(alpha) - vz * std::sin(alpha);
-  };
-  return (speed(run.frames[5]) - speed(run.frames[1])) / 0.4;
+  std::ostringstream law;
+  law.precision(17);
+  law << R"({"type": "coulomb", "friction": )" << mu << "}";
+  const SceneRun run = run_block_on_incline(dim == 2 ? "block_incline_2d" : "block_incline_3d", dim, alpha, law.str());
+  return (downhill_speed(run, run.frames[5], dim, alpha) - downhill_speed(run, run.frames[1], dim, alpha)) / 0.4;
 }
 
 void sweep_incline(int dim) {

@@ -17,6 +17,7 @@
 #include <cmath>
 #include <sstream>
 
+#include "incline_scene.hpp"
 #include "run_scene.hpp"
 
 using namespace moreau_test;
@@ -32,33 +33,13 @@ struct InclineResult {
 
 /// A block bonded to an incline (2D: polygon on a slab, 2 points; 3D: box on a plane, 4).
 InclineResult bonded_block(int dim, double alpha, double mu, double cohesion, double area) {
-  std::ostringstream s;
-  s.precision(17);
-  const double nx = std::sin(alpha), nz = std::cos(alpha);
-  s << R"({"format": "moreau-scene/1", "dimension": )" << dim << R"(, "time": {"step": 1e-3, "duration": 0.5},
-  "gravity": )" << (dim == 2 ? "[0, -9.81]" : "[0, 0, -9.81]") << R"(, "materials": {"m": {"density": 1000}},
-  "laws": {"glued": {"type": "cohesive", "friction": )" << mu << R"(, "cohesion": )" << cohesion
-    << R"(, "tensile_strength": )" << 0.9 * cohesion / mu << R"(, "area": )" << area << R"(}},
-  "interactions": [{"groups": ["block", "slope"], "law": "glued"}],
-  "solver": {"type": "nlgs", "tolerance": 1e-12, "max_iterations": 500}, "output": {"every": 100}, "bodies": [)";
-  if (dim == 2) {
-    s << R"({"name": "slope", "fixed": true, "position": [)" << -0.1 * nx << ", " << -0.1 * nz << R"(], "angle": )" << -alpha
-      << R"(, "contactors": [{"shape": "polygon", "vertices": [[-10, -0.1], [10, -0.1], [10, 0.1], [-10, 0.1]], "group": "slope"}]},
-      {"name": "block", "material": "m", "position": [)" << 0.05 * nx << ", " << 0.05 * nz << R"(], "angle": )" << -alpha
-      << R"(, "contactors": [{"shape": "polygon", "vertices": [[-0.1, -0.05], [0.1, -0.05], [0.1, 0.05], [-0.1, 0.05]], "group": "block"}]}]})";
-  } else {
-    s << R"({"name": "slope", "fixed": true, "position": [0, 0, 0], "contactors": [{"shape": "plane", "normal": [)" << nx
-      << ", 0, " << nz << R"(], "group": "slope"}]},
-      {"name": "block", "material": "m", "position": [)" << 0.05 * nx << ", 0, " << 0.05 * nz << R"(], "orientation": [)"
-      << std::cos(alpha / 2) << ", 0, " << std::sin(alpha / 2) << R"(, 0],
-       "contactors": [{"shape": "box", "size": [0.2, 0.2, 0.1], "group": "block"}]}]})";
-  }
-  SceneRun run = run_scene(dim == 2 ? "bonded_incline_2d" : "bonded_incline_3d", s.str());
-  auto speed = [&](const std::string& f) {
-    const auto v = run.at(f, "velocity");
-    return v[dim] * std::cos(alpha) - v[dim + dim - 1] * std::sin(alpha);
-  };
-  return {(speed(run.frames[5]) - speed(run.frames[1])) / 0.4, run.at(run.frames.back(), "laws/bonds")[0]};
+  std::ostringstream law;
+  law.precision(17);
+  law << R"({"type": "cohesive", "friction": )" << mu << R"(, "cohesion": )" << cohesion << R"(, "tensile_strength": )"
+      << 0.9 * cohesion / mu << R"(, "area": )" << area << "}";
+  const SceneRun run = run_block_on_incline(dim == 2 ? "bonded_incline_2d" : "bonded_incline_3d", dim, alpha, law.str());
+  return {(downhill_speed(run, run.frames[5], dim, alpha) - downhill_speed(run, run.frames[1], dim, alpha)) / 0.4,
+          run.at(run.frames.back(), "laws/bonds")[0]};
 }
 
 void sweep_bonded_incline(int dim) {

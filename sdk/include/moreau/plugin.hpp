@@ -38,10 +38,11 @@
 namespace moreau {
 
 /// Plugin kinds, one folder each under plugins/.
-enum class Kind { modelization, integrator, force, hook, shape, detector, broadphase, law, solver, writer, analysis };
+/// New kinds go at the end (the values are part of the plugin ABI, sdk/README.md).
+enum class Kind { modelization, integrator, force, hook, shape, detector, broadphase, law, solver, writer, analysis, generator };
 inline constexpr Kind all_kinds[] = {Kind::modelization, Kind::integrator, Kind::force,  Kind::hook,
                                      Kind::shape,        Kind::detector,   Kind::broadphase, Kind::law,
-                                     Kind::solver,       Kind::writer,     Kind::analysis};
+                                     Kind::solver,       Kind::writer,     Kind::analysis,   Kind::generator};
 inline const char* kind_name(Kind k) {
   switch (k) {
     case Kind::modelization: return "modelization";
@@ -55,6 +56,7 @@ inline const char* kind_name(Kind k) {
     case Kind::solver: return "solver";
     case Kind::writer: return "writer";
     case Kind::analysis: return "analysis";
+    case Kind::generator: return "generator";
   }
   return "?";
 }
