@@ -3,25 +3,27 @@
 // fits) that shares counted work between them (plugins/solver/work.hpp: a deterministic
 // cost model in nanosecond-equivalents, so decisions are the same on every run).
 //
-// Over the solves of a run (the time-stepper's), it remembers each member's work per
-// contact to converge from the warm start:
-// 0. The member with the lowest remembered work (the incumbent) goes first; NLGS when
-//    nothing is known. Every few solves (4, doubling after each loss, at most 256) one other
-//    member is tried first with the incumbent's work as its budget: if it converges within
-//    that, it is the cheaper one and takes over.
+// 0. The start: a warm start within the tolerance is the answer (one product and one
+//    error evaluation); from r = 0, r = 0 is the answer when no contact approaches.
+// With `remember` (off by default), over the solves of a run it remembers each member's
+// work per contact to converge from the warm start: the member with the lowest
+// remembered work (the incumbent) goes first (NLGS when nothing is known); every few solves
+// (4, doubling after each loss, at most 256) another member is tried first with the
+// incumbent's work as its budget: if it converges within that, it takes over.
 // 1. NLGS runs on exactly the `nlgs` schedule (error at sweep 1, then every `check_every`
 //    sweeps; through body velocities in the time-stepper), so a step that NLGS finishes
 //    costs what `nlgs` costs. It keeps going while its measured rate says it finishes
-//    within twice the work spent so far or twice another member's remembered work. Another
+//    within twice the work spent so far (or another member's remembered work). Another
 //    incumbent gets three times its remembered work.
 // 2. Otherwise the members take turns in slices that double: the member whose last
 //    measured rate finishes soonest gets the work spent so far; while it would not finish
-//    within that, an untried member (cheapest iteration first; Newton once its first steps
-//    cost at most a quarter of the work spent, or sooner when the others' rates say they
-//    need more than Newton usually does), or one that has had under a fifth of the work,
-//    gets a quarter of it to measure its rate. NLGS, APGD and the first Newton start from the
-//    best iterate; the second Newton and ADMM continue their own runs from the warm start,
-//    as each would alone (Newton from NLGS's iterate can crawl where alone it converges).
+//    within that, an untried member (cheapest iteration first: APGD, then Newton's own run,
+//    Newton from the best iterate, ADMM; Newton's 4-step probe once the work spent reaches
+//    its cost (ski rental), or sooner when the others' rates say they need more than it),
+//    or one that has had under a fifth of the work, gets a quarter of it to measure its
+//    rate. NLGS, APGD and Newton from the best start from the best iterate; Newton's own
+//    run and ADMM continue their own runs from the warm start as each would alone (Newton
+//    with its line search's memory), since Newton from NLGS's iterate can crawl.
 // 3. The answer is the best iterate of all; the solve ends at the tolerance, when every
 //    member has used `max_iterations` of its own (Newton at most 200), or had three slices
 //    in a row that gained less than 1 %.
@@ -33,6 +35,7 @@
 #include <cmath>
 #include <cstdio>
 #include <cstdlib>
+#include <deque>
 #include <limits>
 #include <moreau/contact_error.hpp>
 #include <moreau/factor_matrix.hpp>
@@ -123,8 +126,30 @@ class Auto : public Solver {
     nc_ = static_cast<double>(nc);
     bodies_ = P.factor.present();
     assembled_ready_ = false;
-    if (bodies_) body_sweeper_.prepare(P, r);  // the records, once per solve
-    else sweeper_.prepare(P);
+    // 0. The start: a warm start that already meets the tolerance (a settled step) is the
+    // answer, for one product and one error evaluation (less than a sweep); from r = 0 the
+    // answer is r = 0 exactly when no contact approaches (every q_n ≥ 0: u = q lies in the
+    // dual cone), checked without a product. `newton` and `prox` check their start too.
+    double start_err = inf;
+    if ((r.array() == 0).all()) {
+      bool open = true;
+      for (Eigen::Index a = 0; a < nc && open; ++a) open = P.q[d * a] >= 0;
+      if (open) {
+        u = P.q;
+        start_err = natural_map_error(P, r, u);
+      }
+      if (bodies_ && !(start_err <= tol_)) body_sweeper_.prepare(P, r);
+    } else {
+      if (bodies_) body_sweeper_.prepare(P, r);  // the records, once per solve
+      velocities(r, u);
+      start_err = natural_map_error(P, r, u);
+    }
+    if (start_err <= tol_) {
+      rep.error = start_err;
+      rep.converged = true;
+      return rep;
+    }
+    if (!bodies_) sweeper_.prepare(P);
     nlgs::fixed_last_order(P, order_);
     costs_ = WorkCosts::of(P, bodies_);
     if (bodies_) {
@@ -139,13 +164,15 @@ class Auto : public Solver {
     }
     start_ = r;
     best_ = r;
-    best_err_ = inf;
+    best_err_ = start_err;  // ∞ when not evaluated (r = 0 with approaching contacts)
+    best_by_ = -1;
     winner_ = -1;
     total_ = 0;
-    work_ = 0;
+    work_ = std::isfinite(start_err) ? costs_.product + costs_.error : 0;  // the start's check
     admm_slices_ = 0;
     apgd_slices_ = 0;
-    current_ = best_by_ = -1;
+    newton_merits_.clear();
+    current_ = -1;
     ++solve_index_;
     const bool direct = nc <= direct_max_contacts_;
     std::array<MemberState, member_count> m;
@@ -217,10 +244,6 @@ class Auto : public Solver {
     } else if (first != nlgs_member) {
       slice(m, first, 3 * memory_[first].cost * nc_, false);
       if (best_err_ <= tol_) return finish();
-    } else {
-      velocities(r, u);
-      keep(r, natural_map_error(P, r, u));
-      work_ += costs_.product + costs_.error;
     }
     if (!std::isfinite(best_err_)) return finish();
 
@@ -427,6 +450,7 @@ class Auto : public Solver {
         newton::Options o;
         limits(o);
         o.last = &last_;
+        if (who == newton_start_member) o.merits = &newton_merits_;  // its own run goes on as one run
         s = newton_.solve(with_w(), o, x, v);
         break;
       }
@@ -475,15 +499,17 @@ class Auto : public Solver {
     exploring_ = -1;
     if (remaining > elapsed) {
       // Untried members, the cheapest iterations first. Newton's probe (4 steps, each a
-      // factorisation) and ADMM's first step (a factorisation) wait until they cost at most
-      // a quarter of the work spent, unless the tried members' rates say they need more than
-      // Newton's usual 15 steps.
+      // factorisation; its own run first, as `newton` alone) and ADMM's first step (a
+      // factorisation) wait until the work spent reaches their cost, unless the tried
+      // members' rates say they need more than a Newton probe: as in ski rental, a problem
+      // the others finish within a probe's work never pays for it, and one that Newton
+      // solves pays at most the probe's work on top of Newton's.
       const double step = newton_step_estimate();
       int waiting = -1;
-      for (int k : {apgd_member, newton_member, newton_start_member, admm_member}) {
+      for (int k : {apgd_member, newton_start_member, newton_member, admm_member}) {
         if (excluded(m[k], k) || m[k].slices != 0) continue;
         const double probe = k == admm_member ? step : k == apgd_member ? 0.0 : 4 * step;
-        if (probe > 0.25 * elapsed && remaining < 4 * step) {
+        if (probe > elapsed && remaining < 4 * step) {
           if (waiting < 0) waiting = k;
           continue;
         }
@@ -543,6 +569,7 @@ class Auto : public Solver {
   long total_ = 0;
   double work_ = 0;       ///< work of this solve (plugins/solver/work.hpp)
   Eigen::VectorXd last_;  ///< Newton's last iterate of its last slice
+  std::deque<double> newton_merits_;  ///< the line search's memory of Newton's own run
   int admm_slices_ = 0;   ///< ADMM slices of this solve (the later ones resume its run)
   int apgd_slices_ = 0;   ///< APGD slices of this solve
   apgd::State apgd_state_;

@@ -120,7 +120,8 @@ SolverReport Newton::solve(const LocalProblem& P, const Options& o, Eigen::Vecto
   double err = natural_map_error(P, r, u);
   double best_err = err;
   best = r;
-  std::deque<double> merits;
+  std::deque<double> own_merits;
+  std::deque<double>& merits = o.merits ? *o.merits : own_merits;
   std::vector<double> best_hist;
   bool analysed = false;
   WorkMeter meter(o.max_work, o.work);

@@ -11,6 +11,7 @@
 // ρ_n, ρ_t are per contact, the inverses of the diagonal of the contact's block of W.
 // Stopping test: the DESIGN §1 error (natural map), recomputed from r; the best finite
 // iterate is the one returned.
+#include <deque>
 #include <Eigen/SparseLU>
 #include <moreau/contact_problem.hpp>
 #include <moreau/solver.hpp>
@@ -36,6 +37,10 @@ struct Options {
   double* work = nullptr;
   /// When given, receives the last iterate (r receives the best): `auto` resumes a run from it.
   Eigen::VectorXd* last = nullptr;
+  /// When given, the non-monotone line search's recent merits, kept across calls: `auto`'s
+  /// slices of one run then step as one uninterrupted run would (restarted with an empty
+  /// memory, a resumed run takes monotone steps and can crawl).
+  std::deque<double>* merits = nullptr;
 };
 
 class Newton {
