@@ -3,8 +3,8 @@
 // fits) that shares counted work between them (plugins/solver/work.hpp: a deterministic
 // cost model in nanosecond-equivalents, so decisions are the same on every run).
 //
-// 0. The start: a warm start within the tolerance is the answer (one product and one
-//    error evaluation); from r = 0, r = 0 is the answer when no contact approaches.
+// 0. The start: given W, a warm start within the tolerance is the answer (one product and
+//    one error evaluation); from r = 0, r = 0 is the answer when no contact approaches.
 // With `remember` (off by default), over the solves of a run it remembers each member's
 // work per contact to converge from the warm start: the member with the lowest
 // remembered work (the incumbent) goes first (NLGS when nothing is known); every few solves
@@ -126,10 +126,11 @@ class Auto : public Solver {
     nc_ = static_cast<double>(nc);
     bodies_ = P.factor.present();
     assembled_ready_ = false;
-    // 0. The start: a warm start that already meets the tolerance (a settled step) is the
-    // answer, for one product and one error evaluation (less than a sweep); from r = 0 the
-    // answer is r = 0 exactly when no contact approaches (every q_n ≥ 0: u = q lies in the
-    // dual cone), checked without a product. `newton` and `prox` check their start too.
+    // 0. The start: given W (an FCLib problem), a warm start that already meets the
+    // tolerance is the answer, for one product and one error evaluation (less than a
+    // sweep); from r = 0 the answer is r = 0 exactly when no contact approaches (every
+    // q_n ≥ 0: u = q lies in the dual cone), checked without a product. `newton` and
+    // `prox` check their start too.
     double start_err = inf;
     if ((r.array() == 0).all()) {
       bool open = true;
@@ -139,8 +140,12 @@ class Auto : public Solver {
         start_err = natural_map_error(P, r, u);
       }
       if (bodies_ && !(start_err <= tol_)) body_sweeper_.prepare(P, r);
+    } else if (bodies_) {
+      // In a time step NLGS takes its first sweep as `nlgs` does: a warm start accepted at
+      // every step of a resting stack lets its residual (up to the tolerance) add up into
+      // a slow creep of the bodies.
+      body_sweeper_.prepare(P, r);  // the records, once per solve
     } else {
-      if (bodies_) body_sweeper_.prepare(P, r);  // the records, once per solve
       velocities(r, u);
       start_err = natural_map_error(P, r, u);
     }
