@@ -249,6 +249,10 @@ class Auto : public Solver {
     } else if (first != nlgs_member) {
       slice(m, first, 3 * memory_[first].cost * nc_, false);
       if (best_err_ <= tol_) return finish();
+    } else if (!std::isfinite(best_err_)) {  // nlgs_sweeps = 0: the start's error, unless rule 0 had it
+      velocities(r, u);
+      keep(r, natural_map_error(P, r, u));
+      work_ += costs_.product + costs_.error;
     }
     if (!std::isfinite(best_err_)) return finish();
 
