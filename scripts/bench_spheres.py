@@ -9,23 +9,27 @@ stage times come from `moreau run`'s table, iterations and contact counts from t
 and the translations only); `--layout apart` spaces the spheres 1 cm apart and 5 mm above
 the floor, so no step has a contact (only detection runs).
 
-    python3 scripts/bench_spheres.py [--moreau build/bin/moreau] [--steps 20] [--large]
+    python3 scripts/bench_spheres.py [--moreau build/bin/moreau] [--steps 20] [--large | --sizes 10000,100000]
+                                     [--exchange auto,nlgs,apgd] [--tolerance 1e-4] [--timeout 600]
                                      [--friction 0.3,0] [--layout touching,apart]
+
+With MOREAU_STAGE_CLOCK=cpu in the environment the stage times are CPU times.
 """
 import argparse, json, math, os, re, subprocess, sys, tempfile, time
 
 import h5py
 
 
-def solver(variant):
-    """`w` / `bodies`: nlgs with that exchange, 200 sweeps at most; `auto`: the default solver.
-    All at tolerance 1e-4; the table's `error max` is the worst step's final error."""
-    if variant in ("auto", "apgd", "newton", "admm"):
-        return {"type": variant, "tolerance": 1e-4}
-    return {"type": "nlgs", "tolerance": 1e-4, "max_iterations": 200, "exchange": variant}
+def solver(variant, tolerance=1e-4, sweeps=200):
+    """`w` / `bodies`: nlgs with that exchange, `sweeps` sweeps at most (`nlgs`: its own
+    default exchange and cap); `auto`: the default solver; other names: that solver with its
+    defaults. All at `tolerance`; the table's `error max` is the worst step's final error."""
+    if variant in ("w", "bodies"):
+        return {"type": "nlgs", "tolerance": tolerance, "max_iterations": sweeps, "exchange": variant}
+    return {"type": variant, "tolerance": tolerance}
 
 
-def scene(n, steps, path_h5, exchange, friction=0.3, layout="touching"):
+def scene(n, steps, path_h5, exchange, friction=0.3, layout="touching", tolerance=1e-4, sweeps=200):
     side = round(n ** (1 / 3))
     nz = math.ceil(n / (side * side))
     r = 0.01
@@ -50,7 +54,7 @@ def scene(n, steps, path_h5, exchange, friction=0.3, layout="touching"):
             "laws": {"rough": {"type": "coulomb", "friction": friction}},
             "bodies": bodies,
             "interactions": [{"groups": ["grain", "grain"], "law": "rough"}, {"groups": ["grain", "wall"], "law": "rough"}],
-            "solver": solver(exchange),
+            "solver": solver(exchange, tolerance, sweeps),
             "output": {"file": path_h5, "every": 1, "display": "points"}}  # no shape meshes: 10^5 spheres would write 50 MB a frame
 
 
@@ -59,22 +63,34 @@ def main():
     ap.add_argument("--moreau", default=os.path.join(os.path.dirname(__file__), "..", "build", "bin", "moreau"))
     ap.add_argument("--steps", type=int, default=20)
     ap.add_argument("--large", action="store_true", help="also 10^5 spheres")
+    ap.add_argument("--sizes", default="", help="numbers of spheres (comma-separated; overrides --large)")
     ap.add_argument("--exchange", default="w,bodies",
-                    help="solvers to compare (comma-separated: w, bodies = nlgs with that exchange; auto, apgd, newton, admm)")
+                    help="solvers to compare (comma-separated: w, bodies = nlgs with that exchange and --sweeps; "
+                         "auto, nlgs, apgd, psor, newton, admm, prox = that solver)")
+    ap.add_argument("--tolerance", type=float, default=1e-4)
+    ap.add_argument("--sweeps", type=int, default=200, help="sweep cap of the w / bodies variants")
+    ap.add_argument("--timeout", type=float, default=0, help="seconds a run may take (0: no limit); a run over it is reported")
     ap.add_argument("--friction", default="0.3", help="friction coefficients to run (comma-separated)")
     ap.add_argument("--layout", default="touching", help="touching (contacts from the start) and/or apart (none)")
     a = ap.parse_args()
-    sizes = [10_000] + ([100_000] if a.large else [])
+    sizes = [int(x) for x in a.sizes.split(",")] if a.sizes else [10_000] + ([100_000] if a.large else [])
+    # ms/step: the whole step (every stage); solve ms/step and µs/contact: the solve stage
+    # alone, per step and per contact and step (contacts: the mean over the steps).
     print(f"{'spheres':>8} {'layout':>8} {'mu':>4} {'exchange':>8} {'contacts':>9} {'sweeps/step':>11} {'ms/step':>8} "
-          f"{'error max':>9} {'detect %':>8} {'solve %':>8} {'update %':>8} {'output %':>8} {'NLGS updates/s':>15}")
+          f"{'solve ms/step':>13} {'solve us/contact':>16} {'error max':>9} {'missed':>6} "
+          f"{'detect %':>8} {'solve %':>8} {'update %':>8} {'output %':>8} {'NLGS updates/s':>15}")
     runs = [(n, lay, float(mu), x) for n in sizes for lay in a.layout.split(",") for mu in a.friction.split(",")
             for x in a.exchange.split(",")]
     for n, layout, mu, exchange in runs:
         with tempfile.TemporaryDirectory() as d:
             h5 = os.path.join(d, "out.h5")
             sp = os.path.join(d, "scene.json")
-            json.dump(scene(n, a.steps, h5, exchange, mu, layout), open(sp, "w"))
-            out = subprocess.run([a.moreau, "run", sp], capture_output=True, text=True)
+            json.dump(scene(n, a.steps, h5, exchange, mu, layout, a.tolerance, a.sweeps), open(sp, "w"))
+            try:
+                out = subprocess.run([a.moreau, "run", sp], capture_output=True, text=True, timeout=a.timeout or None)
+            except subprocess.TimeoutExpired:
+                print(f"{n:>8} {layout:>8} {mu:>4g} {exchange:>8} did not finish {a.steps} steps in {a.timeout:g} s", flush=True)
+                continue
             if out.returncode != 0:
                 sys.exit(out.stderr)
             stages = {m.group(1): float(m.group(2)) for m in re.finditer(r"^\s+(\w+)\s+([0-9.]+) s", out.stdout + out.stderr, re.M)}
@@ -86,13 +102,17 @@ def main():
                 sweeps = sum(int(fr["solver"].attrs["iterations"]) for fr in frames)
                 updates = sum(int(fr["solver"].attrs["iterations"]) * len(fr["contacts/gap"]) for fr in frames)
                 contacts = len(frames[-1]["contacts/gap"])
+                mean_contacts = sum(len(fr["contacts/gap"]) for fr in frames) / len(frames)
                 worst = max(float(fr["solver"].attrs["error"]) for fr in frames)
+                missed = sum(float(fr["solver"].attrs["error"]) > a.tolerance for fr in frames)
             # A sweep plus the error checks (one every `check_every` = 5 sweeps, each about a sweep).
             solve = stages.get("solve", 0.0)
             # `auto`'s iterations mix sweeps with APGD steps: no sweep throughput for it.
             rate = f"{updates / solve:>15.3g}" if updates and solve > 0 and exchange in ("w", "bodies") else f"{'-':>15}"
+            per_contact = 1e6 * solve / a.steps / mean_contacts if mean_contacts else 0.0
             print(f"{n:>8} {layout:>8} {mu:>4g} {exchange:>8} {contacts:>9} {sweeps / len(frames):>11.1f} "
-                  f"{1000 * total / a.steps:>8.2f} {worst:>9.1e} {100 * detect / total:>8.1f} {100 * solve / total:>8.1f} "
+                  f"{1000 * total / a.steps:>8.2f} {1000 * solve / a.steps:>13.2f} {per_contact:>16.2f} {worst:>9.1e} {missed:>6} "
+                  f"{100 * detect / total:>8.1f} {100 * solve / total:>8.1f} "
                   f"{100 * update / total:>8.1f} {100 * stages.get('output', 0) / total:>8.1f} {rate}", flush=True)
 
 
