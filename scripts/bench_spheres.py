@@ -26,7 +26,13 @@ def solver(variant, tolerance=1e-4, sweeps=200):
     defaults. All at `tolerance`; the table's `error max` is the worst step's final error."""
     if variant in ("w", "bodies"):
         return {"type": "nlgs", "tolerance": tolerance, "max_iterations": sweeps, "exchange": variant}
-    return {"type": variant, "tolerance": tolerance}
+    # `auto/nlgs_sweeps=0/remember=true`: a solver with some parameters set (JSON values).
+    name, *params = variant.split("/")
+    out = {"type": name, "tolerance": tolerance}
+    for p in params:
+        key, value = p.split("=", 1)
+        out[key] = json.loads(value)
+    return out
 
 
 def scene(n, steps, path_h5, exchange, friction=0.3, layout="touching", tolerance=1e-4, sweeps=200):
@@ -66,7 +72,7 @@ def main():
     ap.add_argument("--sizes", default="", help="numbers of spheres (comma-separated; overrides --large)")
     ap.add_argument("--exchange", default="w,bodies",
                     help="solvers to compare (comma-separated: w, bodies = nlgs with that exchange and --sweeps; "
-                         "auto, nlgs, apgd, psor, newton, admm, prox = that solver)")
+                         "auto, nlgs, apgd, psor, newton, admm, prox = that solver; auto/nlgs_sweeps=0 sets parameters)")
     ap.add_argument("--tolerance", type=float, default=1e-4)
     ap.add_argument("--sweeps", type=int, default=200, help="sweep cap of the w / bodies variants")
     ap.add_argument("--timeout", type=float, default=0, help="seconds a run may take (0: no limit); a run over it is reported")
@@ -89,7 +95,7 @@ def main():
             try:
                 out = subprocess.run([a.moreau, "run", sp], capture_output=True, text=True, timeout=a.timeout or None)
             except subprocess.TimeoutExpired:
-                print(f"{n:>8} {layout:>8} {mu:>4g} {exchange:>8} did not finish {a.steps} steps in {a.timeout:g} s", flush=True)
+                print(f"{n:>8} {layout:>8} {mu:>4g} {exchange:>8.24} did not finish {a.steps} steps in {a.timeout:g} s", flush=True)
                 continue
             if out.returncode != 0:
                 sys.exit(out.stderr)
@@ -110,7 +116,7 @@ def main():
             # `auto`'s iterations mix sweeps with APGD steps: no sweep throughput for it.
             rate = f"{updates / solve:>15.3g}" if updates and solve > 0 and exchange in ("w", "bodies") else f"{'-':>15}"
             per_contact = 1e6 * solve / a.steps / mean_contacts if mean_contacts else 0.0
-            print(f"{n:>8} {layout:>8} {mu:>4g} {exchange:>8} {contacts:>9} {sweeps / len(frames):>11.1f} "
+            print(f"{n:>8} {layout:>8} {mu:>4g} {exchange:>8.24} {contacts:>9} {sweeps / len(frames):>11.1f} "
                   f"{1000 * total / a.steps:>8.2f} {1000 * solve / a.steps:>13.2f} {per_contact:>16.2f} {worst:>9.1e} {missed:>6} "
                   f"{100 * detect / total:>8.1f} {100 * solve / total:>8.1f} "
                   f"{100 * update / total:>8.1f} {100 * stages.get('output', 0) / total:>8.1f} {rate}", flush=True)
