@@ -215,30 +215,37 @@ TEST(AutoFactored, WithoutWSameAnswerAsWithW) {
     }
 }
 
+std::unique_ptr<moreau::Solver> apgd_solver() {
+  return moreau_test::create<moreau::Solver>(
+      "apgd", {{"tolerance", 1e-10}, {"max_iterations", 100000}, {"shrink", 0.9}, {"restart", true}}, moreau::BuildContext{});
+}
+
+/// APGD on `full` with W and on the same problem given by its factor only (as the
+/// time-stepper gives it): both converge to the same r, u = W r + q. Returns the iteration
+/// counts (with W, through the factor).
+std::pair<long, long> apgd_same_answer_through_the_factor(const moreau::LocalProblem& full) {
+  auto factored = full;
+  factored.W.resize(0, 0);
+  Eigen::VectorXd rw, uw, rf, uf;
+  const auto rep_w = apgd_solver()->solve(full, rw, uw);
+  const auto rep_f = apgd_solver()->solve(factored, rf, uf);
+  EXPECT_TRUE(rep_w.converged) << rep_w.error;
+  EXPECT_TRUE(rep_f.converged) << rep_f.error;
+  EXPECT_LT((rf - rw).norm(), 1e-7 * (1 + rw.norm()));
+  EXPECT_LT((uf - (full.W * rf + full.q)).norm(), 1e-10 * (1 + full.q.norm()));
+  return {rep_w.iterations, rep_f.iterations};
+}
+
 TEST(ApgdFactored, ThroughTheFactorSameAnswerAsWithW) {
-  // Given only the factor (as the time-stepper gives it), APGD multiplies by H M⁻¹ Hᵀ
-  // (packed with M⁻¹ = L Lᵀ folded into H): the same answer as with W. The iteration count
-  // is compared loosely: rounding changes APGD's restart and backtracking decisions (on
-  // dim 2, seed 21, perturbing W's entries by 1e-15 relative moved it from 96 to 80–111),
-  // so the products' different rounding moves it by up to about 20 %.
+  // Given only the factor, APGD multiplies by H M⁻¹ Hᵀ (packed with M⁻¹ = L Lᵀ folded into
+  // H): the same answer as with W. The iteration count is compared loosely: rounding
+  // changes APGD's restart and backtracking decisions (on dim 2, seed 21, perturbing W's
+  // entries by 1e-15 relative moved it from 96 to 80–111), so the products' different
+  // rounding moves it by up to about 20 %.
   for (int d : {2, 3})
     for (unsigned seed : {21u, 22u}) {
-      const auto full = random_problem(d, 6, 2, d == 2 ? 6 : 5, seed);
-      auto factored = full;
-      factored.W.resize(0, 0);
-      auto apgd = [] {
-        return moreau_test::create<moreau::Solver>(
-            "apgd", {{"tolerance", 1e-10}, {"max_iterations", 100000}, {"shrink", 0.9}, {"restart", true}},
-            moreau::BuildContext{});
-      };
-      Eigen::VectorXd rw, uw, rf, uf;
-      const auto rep_w = apgd()->solve(full, rw, uw);
-      const auto rep_f = apgd()->solve(factored, rf, uf);
-      ASSERT_TRUE(rep_w.converged) << rep_w.error;
-      ASSERT_TRUE(rep_f.converged) << rep_f.error;
-      EXPECT_LT(std::abs(rep_f.iterations - rep_w.iterations), 1 + 3 * rep_w.iterations / 10) << "dim " << d << " seed " << seed << ": " << rep_w.iterations << " with W";
-      EXPECT_LT((rf - rw).norm(), 1e-7 * (1 + rw.norm()));
-      EXPECT_LT((uf - (full.W * rf + full.q)).norm(), 1e-10 * (1 + full.q.norm()));
+      const auto [with_w, through_factor] = apgd_same_answer_through_the_factor(random_problem(d, 6, 2, d == 2 ? 6 : 5, seed));
+      EXPECT_LT(std::abs(through_factor - with_w), 1 + 3 * with_w / 10) << "dim " << d << " seed " << seed << ": " << with_w << " with W";
     }
 }
 
@@ -319,40 +326,13 @@ TEST(ApgdFactored, IndefiniteInverseMassIsNotPackedAndApgdStillSolves) {
   moreau::apgd::ScaledFactor S;
   EXPECT_FALSE(S.prepare(3, P.factor));
   P.W = moreau::assemble_w(3, P.factor);
-  auto factored = P;
-  factored.W.resize(0, 0);
-  auto apgd = [] {
-    return moreau_test::create<moreau::Solver>(
-        "apgd", {{"tolerance", 1e-10}, {"max_iterations", 100000}, {"shrink", 0.9}, {"restart", true}},
-        moreau::BuildContext{});
-  };
-  Eigen::VectorXd rw, uw, rf, uf;
-  const auto rep_w = apgd()->solve(P, rw, uw);
-  const auto rep_f = apgd()->solve(factored, rf, uf);
-  EXPECT_EQ(rep_w.converged, rep_f.converged);
-  EXPECT_LT((rf - rw).norm(), 1e-6 * (1 + rw.norm()));
+  apgd_same_answer_through_the_factor(P);
 }
 
 TEST(ApgdFactored, PackedProductSameAnswerAsWWithLockedAndSphericalBodies) {
   // End to end through the packed product, on the varied inverse masses and the compliance.
   for (int d : {2, 3})
-    for (bool compliance : {false, true}) {
-      const auto full = varied_problem(d, 35, compliance);
-      auto factored = full;
-      factored.W.resize(0, 0);
-      auto apgd = [] {
-        return moreau_test::create<moreau::Solver>(
-            "apgd", {{"tolerance", 1e-10}, {"max_iterations", 100000}, {"shrink", 0.9}, {"restart", true}},
-            moreau::BuildContext{});
-      };
-      Eigen::VectorXd rw, uw, rf, uf;
-      const auto rep_w = apgd()->solve(full, rw, uw);
-      const auto rep_f = apgd()->solve(factored, rf, uf);
-      ASSERT_TRUE(rep_w.converged) << rep_w.error;
-      ASSERT_TRUE(rep_f.converged) << rep_f.error;
-      EXPECT_LT((rf - rw).norm(), 1e-7 * (1 + rw.norm()));
-      EXPECT_LT((uf - (full.W * rf + full.q)).norm(), 1e-10 * (1 + full.q.norm()));
-    }
+    for (bool compliance : {false, true}) apgd_same_answer_through_the_factor(varied_problem(d, 35, compliance));
 }
 
 }  // namespace
