@@ -218,12 +218,28 @@ void ContactStages::drop_corners_of_nearer_facets(std::vector<char>& drop) const
   }
 }
 
+bool ContactStages::inside_facet_in_front(const Detected& ct) const {
+  // In a concave part of a mesh boundary (a valley of a sagging beam, the dent a disk
+  // presses into a slab) a round candidate projects inside several facets and touches
+  // each: all those contacts hold it (one alone leaves it penetrating the others, or
+  // rocking across the valley). A contact inside its facet, with the candidate's centre in
+  // front of the facet's plane (gap ≥ −half width), is such a contact, kept beside the
+  // nearest. One behind the plane (a node that crossed a convex corner of the other mesh,
+  // seen from the far facet) is not: the nearest alone stays.
+  const int side = facet_index_[ct.contactor[0]] >= 0 ? 0 : 1;
+  const Contactor& facet = contactors[ct.contactor[side]];
+  const unsigned all = (1u << facet.count) - 1;
+  if (facet_support(facet, ct.point, side) != all) return false;
+  const int d = facet.count == 2 ? 2 : 3;
+  return ct.point.gap >= -contactors[ct.contactor[1 - side]].shape->half_width(d);
+}
+
 void ContactStages::keep_nearest_facets() {
   // A candidate (a mesh node, a disk, a sphere) near a mesh boundary is found against each
-  // facet close enough; it touches one: of its contacts with the facets of one body, the
-  // corners of nearer facets go (drop_corners_of_nearer_facets), then the one of smallest
-  // |gap| stays (ties: the first found), as LMGC90 keeps the nearest antagonist segment
-  // (docs/contacts.md, "Meshes").
+  // facet close enough: of its contacts with the facets of one body, the corners of nearer
+  // facets go (drop_corners_of_nearer_facets), then the one of smallest |gap| stays (ties:
+  // the first found), as LMGC90 keeps the nearest antagonist segment, with the others
+  // inside their facets in front of them (inside_facet_in_front; docs/contacts.md, "Meshes").
   struct Entry {
     int candidate, body;
     double distance;
@@ -243,7 +259,9 @@ void ContactStages::keep_nearest_facets() {
     return std::tie(x.candidate, x.body, x.distance, x.index) < std::tie(y.candidate, y.body, y.distance, y.index);
   });
   for (std::size_t i = 1; i < entries.size(); ++i)
-    if (entries[i].candidate == entries[i - 1].candidate && entries[i].body == entries[i - 1].body) drop[entries[i].index] = 1;
+    if (entries[i].candidate == entries[i - 1].candidate && entries[i].body == entries[i - 1].body &&
+        !inside_facet_in_front(contacts_[entries[i].index]))
+      drop[entries[i].index] = 1;
   std::size_t kept = 0;
   for (std::size_t a = 0; a < contacts_.size(); ++a)
     if (!drop[a]) contacts_[kept++] = contacts_[a];

@@ -109,6 +109,8 @@ class ContactStages {
   /// Marks in `drop` the facet contacts at a corner (edge) of a facet that holds a nearer
   /// contact of the same candidate (keep_nearest_facets).
   void drop_corners_of_nearer_facets(std::vector<char>& drop) const;
+  /// A facet contact inside its facet with the candidate in front of it (kept beside the nearest).
+  bool inside_facet_in_front(const Detected& ct) const;
   /// The step's contacts as sides for the assembly (support nodes and weights).
   void fill_sides(int d);
   /// Writes the step's problem (export_problems), local or global.
