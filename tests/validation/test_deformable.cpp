@@ -311,6 +311,60 @@ TEST(ElasticStack, SymmetricContactGivesThePatchTestAndTheCandidateAntagonistAns
   EXPECT_LT(disp, 1e-6 * umax);
 }
 
+TEST(ElasticStack, SymmetricContactIn3DGivesThePatchTest) {
+  // The same in 3D: two H8 boxes (0.2 × 0.2 × 0.1 m, s = 0.05 m) on a rigid plane, the
+  // interface nodes of each candidates on the other's faces (point-face both ways). Uniform
+  // pressure ρ g H: an inner node carries p s², an edge node half, a corner a quarter.
+  const double rho = 1000, g = 9.81, W = 0.2, H = 0.1, s = 0.05;
+  SceneRun run = run_scene("stack_symmetric_3d", format(R"({
+  "format": "moreau-scene/1", "dimension": 3,
+  "time": {"step": 0.02, "duration": 1.0, "theta": 1.0},
+  "gravity": [0, 0, -%g],
+  "materials": {"soft": {"density": %g, "young": 1e6, "poisson": 0}},
+  "laws": {"rough": {"type": "coulomb", "friction": 0.5}},
+  "bodies": [
+    {"name": "floor", "fixed": true, "position": [0, 0, 0], "contactors": [{"shape": "plane", "group": "floor"}]},
+    {"name": "lower", "model": "elastic", "material": "soft", "mesh": {"generate": "box", "origin": [-0.1, -0.1, 0], "extent": [%g, %g, %g], "size": %g},
+     "contactors": [{"shape": "point", "boundary": "zmin", "group": "lower_bottom"}, {"shape": "face", "boundary": "zmax", "group": "lower_top"},
+                    {"shape": "point", "boundary": "zmax", "group": "lower_top_nodes"}]},
+    {"name": "upper", "model": "elastic", "material": "soft", "mesh": {"generate": "box", "origin": [-0.1, -0.1, 0.1], "extent": [%g, %g, %g], "size": %g},
+     "contactors": [{"shape": "point", "boundary": "zmin", "group": "upper_bottom"}, {"shape": "face", "boundary": "zmin", "group": "upper_bottom_faces"}]}
+  ],
+  "interactions": [{"groups": ["lower_bottom", "floor"], "law": "rough"}, {"groups": ["upper_bottom", "lower_top"], "law": "rough"},
+                   {"groups": ["lower_top_nodes", "upper_bottom_faces"], "law": "rough"}],
+  "solver": {"type": "nlgs", "tolerance": 1e-10, "max_iterations": 5000},
+  "output": {"every": 50}
+})", g, rho, W, W, H, s, W, W, H, s));
+  const std::string f = run.frames.back();
+  const auto F = run.at(f, "contacts/normal_force"), x = run.at(f, "contacts/point"), bodies = run.at(f, "contacts/bodies");
+  const double weight = rho * g * W * W * H, p = rho * g * H;
+  const int n = static_cast<int>(std::lround(W / s)) + 1;
+  std::map<std::pair<long, long>, double> at;  // Σ normal force per interface node (i, j)
+  double floor = 0, interface = 0;
+  std::size_t contacts = 0;
+  for (std::size_t c = 0; c < F.size(); ++c) {
+    if (bodies[2 * c] == 0 || bodies[2 * c + 1] == 0) {
+      floor += F[c];
+      continue;
+    }
+    interface += F[c];
+    ++contacts;
+    at[{std::lround((x[3 * c] + W / 2) / s), std::lround((x[3 * c + 1] + W / 2) / s)}] += F[c];
+  }
+  double worst = 0;
+  for (const auto& [ij, force] : at) {
+    const double share = (ij.first == 0 || ij.first == n - 1 ? 0.5 : 1.0) * (ij.second == 0 || ij.second == n - 1 ? 0.5 : 1.0) * s * s;
+    worst = std::max(worst, std::fabs(force / share - p) / p);
+  }
+  std::printf("3D symmetric: floor %.4f N (weights %.4f), interface %.4f N (upper weight %.4f), %zu contacts on %zu nodes; "
+              "pressure: largest deviation from rho g H %.2e\n", floor, 2 * weight, interface, weight, contacts, at.size(), worst);
+  EXPECT_NEAR(floor, 2 * weight, 1e-6 * weight);
+  EXPECT_NEAR(interface, weight, 1e-6 * weight);
+  EXPECT_EQ(at.size(), static_cast<std::size_t>(n * n));
+  EXPECT_EQ(contacts, 2 * at.size());
+  EXPECT_LT(worst, 1e-6);
+}
+
 // ------------------------------------------- a rigid disk dropped on an elastic slab
 
 TEST(ElasticSlab, RigidDiskOnAFreeSlabKeepsMomentumAndDoesNotPenetrate) {

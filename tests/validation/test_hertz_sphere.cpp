@@ -34,7 +34,7 @@ std::string hertz_sphere_scene(const std::string& mesh) {
   // and 20× the NLGS iterations).
   return format(R"({
   "format": "moreau-scene/1", "dimension": 3,
-  "time": {"step": 0.005, "duration": 0.2, "theta": 1.0},
+  "time": {"step": 0.005, "duration": 0.3, "theta": 1.0},
   "gravity": [0, 0, %g],
   "materials": {"rubber": {"density": %g, "young": %g, "poisson": %g}},
   "laws": {"frictionless": {"type": "coulomb", "friction": 0}},
@@ -45,7 +45,7 @@ std::string hertz_sphere_scene(const std::string& mesh) {
   ],
   "interactions": [{"groups": ["sphere", "plane"], "law": "frictionless"}],
   "solver": {"type": "nlgs", "tolerance": 1e-10, "max_iterations": 5000},
-  "output": {"every": 40}
+  "output": {"every": 60}
 })", -kG, kRho, kE, kNu, mesh.c_str());
 }
 
