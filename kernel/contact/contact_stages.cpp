@@ -258,10 +258,23 @@ void ContactStages::keep_nearest_facets() {
   std::sort(entries.begin(), entries.end(), [](const Entry& x, const Entry& y) {
     return std::tie(x.candidate, x.body, x.distance, x.index) < std::tie(y.candidate, y.body, y.distance, y.index);
   });
-  for (std::size_t i = 1; i < entries.size(); ++i)
-    if (entries[i].candidate == entries[i - 1].candidate && entries[i].body == entries[i - 1].body &&
-        !inside_facet_in_front(contacts_[entries[i].index]))
-      drop[entries[i].index] = 1;
+  // The others kept beside the nearest must hold the candidate in another direction: two
+  // contacts of one round candidate whose normals differ by less than 0.01 rad (a disk
+  // across the valley of a nearly flat, sagging beam) constrain the same motion, and such
+  // near-duplicates only slow the solvers down; without the second, the candidate overlaps
+  // that facet by at most ~R·0.01² near the valley's node.
+  constexpr double same_direction = 0.99995;  // cos 0.01
+  std::size_t nearest = 0;
+  for (std::size_t i = 0; i < entries.size(); ++i) {
+    if (i == 0 || entries[i].candidate != entries[i - 1].candidate || entries[i].body != entries[i - 1].body) {
+      nearest = entries[i].index;
+      continue;
+    }
+    const Detected& ct = contacts_[entries[i].index];
+    double cosine = 0;
+    for (int k = 0; k < 3; ++k) cosine += ct.point.normal[k] * contacts_[nearest].point.normal[k];
+    if (!inside_facet_in_front(ct) || cosine > same_direction) drop[entries[i].index] = 1;
+  }
   std::size_t kept = 0;
   for (std::size_t a = 0; a < contacts_.size(); ++a)
     if (!drop[a]) contacts_[kept++] = contacts_[a];
