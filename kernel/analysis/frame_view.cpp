@@ -206,6 +206,23 @@ void FrameView::bodies(const World& w) {
   B.torque = torque_;
 }
 
+bool FrameView::mesh_side_velocity(const World& w, std::size_t c, double* u_begin, double* u_end) const {
+  // The rigid formula above knows only bodies of one node; a side on a mesh moves with the
+  // nodes its point sits on, weighted: the contact side's H v, which the step kept.
+  const auto b0 = static_cast<std::size_t>(contact_bodies_[2 * c]), b1 = static_cast<std::size_t>(contact_bodies_[2 * c + 1]);
+  if ((rigid_[b0] && rigid_[b1]) || !w.contacts) return false;
+  const int d = w.dimension;
+  const Eigen::VectorXd &ub = w.contacts->local_velocity_begin(), &ue = w.contacts->local_velocity_end();
+  const auto need = static_cast<Eigen::Index>((c + 1) * static_cast<std::size_t>(d));
+  if (ub.size() != ue.size() || ue.size() < need) return false;
+  for (int i = 0; i < d; ++i) {
+    const auto k = static_cast<Eigen::Index>(c * static_cast<std::size_t>(d) + static_cast<std::size_t>(i));
+    u_begin[i] = ub[k];
+    u_end[i] = ue[k];
+  }
+  return true;
+}
+
 void FrameView::contacts(const World& w) {
   AnalysisContacts& Cv = frame_.contacts;
   Cv = AnalysisContacts{};
@@ -251,7 +268,9 @@ void FrameView::contacts(const World& w) {
         for (int j = 0; j < 3; ++j) fr[3 * i + j] = f[i][j];
     }
     // Relative velocity of the material points at the contact, u = Hᵀ v: first body minus
-    // second, each v + ω × (x_c − x_lever), in the local frame.
+    // second, each v + ω × (x_c − x_lever), in the local frame; with a side on another
+    // modelization (a mesh), the contact side's own H v (mesh_side_velocity).
+    if (mesh_side_velocity(w, c, &u_begin_[c * d], &u_end_[c * d])) continue;
     for (int depth = 0; depth < 2; ++depth) {
       const auto& v = depth == 0 ? v0_ : v_;
       const auto& om = depth == 0 ? w0_ : w_;

@@ -31,6 +31,9 @@ class FrameView {
  private:
   void bodies(const World& world);
   void contacts(const World& world);
+  /// Contact c's u⁻, u⁺ (local frame) from the step's H v when a side is not a rigid body;
+  /// false for rigid pairs (their velocities give it).
+  bool mesh_side_velocity(const World& world, std::size_t c, double* u_begin, double* u_end) const;
 
   AnalysisFrame frame_;
   // Constant over the run.

@@ -154,31 +154,127 @@ Pose ContactStages::pose_of(std::size_t i) const {
   return p;
 }
 
+namespace {
+
+/// The support nodes of a facet contact (its facet's nodes of non-zero weight), as a bit
+/// mask over the facet's nodes.
+unsigned facet_support(const Contactor& facet, const ContactPoint& p, int side) {
+  unsigned mask = 0;
+  for (int j = 0; j < facet.count; ++j)
+    if (p.weights[side][j] != 0) mask |= 1u << j;
+  return mask;
+}
+
+}  // namespace
+
+void ContactStages::drop_corners_of_nearer_facets(std::vector<char>& drop) const {
+  // A candidate that projects inside facet A (or onto an edge of a 3D face) is also found
+  // by a neighbouring facet B past B's end, at the corner (or edge) B shares with A. The
+  // point of A is then at least as near as that corner (the corner is part of A), so the
+  // corner contact is never the nearest feature; but by |gap| it can win: a disk resting
+  // in the valley of a sagging mesh (gap −1e-10 inside A, +1e-11 at the corner, which the
+  // disk then rolls about as about a pinnacle, unstably, until it falls through). Drop a
+  // facet contact whose support nodes all belong to another contact's facet (same
+  // candidate, same body) that supports that candidate on more of its nodes.
+  struct Support {
+    int candidate, body;
+    std::size_t index;
+    std::array<std::size_t, 4> nodes;  ///< the support nodes (rows of the node set)
+    int count;                         ///< how many
+    const Contactor* facet;
+  };
+  std::vector<Support> supports;
+  for (std::size_t a = 0; a < contacts_.size(); ++a) {
+    const Detected& ct = contacts_[a];
+    const bool f0 = facet_index_[ct.contactor[0]] >= 0, f1 = facet_index_[ct.contactor[1]] >= 0;
+    if (f0 == f1) continue;
+    const int side = f0 ? 0 : 1;
+    const Contactor& facet = contactors[ct.contactor[side]];
+    const unsigned mask = facet_support(facet, ct.point, side);
+    Support s{ct.contactor[1 - side], facet.body, a, {}, 0, &facet};
+    for (int j = 0; j < facet.count; ++j)
+      if (mask & (1u << j)) s.nodes[static_cast<std::size_t>(s.count++)] = facet.nodes[static_cast<std::size_t>(j)];
+    supports.push_back(s);
+  }
+  std::sort(supports.begin(), supports.end(),
+            [](const Support& x, const Support& y) { return std::tie(x.candidate, x.body, x.index) < std::tie(y.candidate, y.body, y.index); });
+  for (std::size_t i = 0; i < supports.size();) {
+    std::size_t j = i;
+    while (j < supports.size() && supports[j].candidate == supports[i].candidate && supports[j].body == supports[i].body) ++j;
+    for (std::size_t x = i; x < j; ++x)
+      for (std::size_t y = i; y < j; ++y) {
+        const Support &X = supports[x], &Y = supports[y];
+        if (x == y || Y.count <= X.count || drop[Y.index]) continue;
+        bool inside = true;  // every support node of X is a node of Y's facet
+        for (int k = 0; k < X.count && inside; ++k)
+          inside = std::find(Y.facet->nodes.begin(), Y.facet->nodes.begin() + Y.facet->count, X.nodes[k]) !=
+                   Y.facet->nodes.begin() + Y.facet->count;
+        if (inside) {
+          drop[X.index] = 1;
+          break;
+        }
+      }
+    i = j;
+  }
+}
+
+bool ContactStages::inside_facet_in_front(const Detected& ct) const {
+  // In a concave part of a mesh boundary (a valley of a sagging beam, the dent a disk
+  // presses into a slab) a round candidate projects inside several facets and touches
+  // each: all those contacts hold it (one alone leaves it penetrating the others, or
+  // rocking across the valley). A contact inside its facet, with the candidate's centre in
+  // front of the facet's plane (gap ≥ −half width), is such a contact, kept beside the
+  // nearest. One behind the plane (a node that crossed a convex corner of the other mesh,
+  // seen from the far facet) is not: the nearest alone stays.
+  const int side = facet_index_[ct.contactor[0]] >= 0 ? 0 : 1;
+  const Contactor& facet = contactors[ct.contactor[side]];
+  const unsigned all = (1u << facet.count) - 1;
+  if (facet_support(facet, ct.point, side) != all) return false;
+  const int d = facet.count == 2 ? 2 : 3;
+  return ct.point.gap >= -contactors[ct.contactor[1 - side]].shape->half_width(d);
+}
+
 void ContactStages::keep_nearest_facets() {
   // A candidate (a mesh node, a disk, a sphere) near a mesh boundary is found against each
-  // facet close enough; it touches one: of its contacts with the facets of one body, the
-  // one of smallest |gap| stays (ties: the first found), as LMGC90 keeps the nearest
-  // antagonist segment (docs/contacts.md, "Meshes").
+  // facet close enough: of its contacts with the facets of one body, the corners of nearer
+  // facets go (drop_corners_of_nearer_facets), then the one of smallest |gap| stays (ties:
+  // the first found), as LMGC90 keeps the nearest antagonist segment, with the others
+  // inside their facets in front of them (inside_facet_in_front; docs/contacts.md, "Meshes").
   struct Entry {
     int candidate, body;
     double distance;
     std::size_t index;
   };
+  std::vector<char> drop(contacts_.size(), 0);
+  drop_corners_of_nearer_facets(drop);
   std::vector<Entry> entries;
   for (std::size_t a = 0; a < contacts_.size(); ++a) {
     const Detected& ct = contacts_[a];
     const bool f0 = facet_index_[ct.contactor[0]] >= 0, f1 = facet_index_[ct.contactor[1]] >= 0;
-    if (f0 == f1) continue;
+    if (f0 == f1 || drop[a]) continue;
     const int facet = ct.contactor[f0 ? 0 : 1], other = ct.contactor[f0 ? 1 : 0];
     entries.push_back(Entry{other, contactors[facet].body, std::fabs(ct.point.gap), a});
   }
-  if (entries.empty()) return;
   std::sort(entries.begin(), entries.end(), [](const Entry& x, const Entry& y) {
     return std::tie(x.candidate, x.body, x.distance, x.index) < std::tie(y.candidate, y.body, y.distance, y.index);
   });
-  std::vector<char> drop(contacts_.size(), 0);
-  for (std::size_t i = 1; i < entries.size(); ++i)
-    if (entries[i].candidate == entries[i - 1].candidate && entries[i].body == entries[i - 1].body) drop[entries[i].index] = 1;
+  // The others kept beside the nearest must hold the candidate in another direction: two
+  // contacts of one round candidate whose normals differ by less than 0.01 rad (a disk
+  // across the valley of a nearly flat, sagging beam) constrain the same motion, and such
+  // near-duplicates only slow the solvers down; without the second, the candidate overlaps
+  // that facet by at most ~R·0.01² near the valley's node.
+  constexpr double same_direction = 0.99995;  // cos 0.01
+  std::size_t nearest = 0;
+  for (std::size_t i = 0; i < entries.size(); ++i) {
+    if (i == 0 || entries[i].candidate != entries[i - 1].candidate || entries[i].body != entries[i - 1].body) {
+      nearest = entries[i].index;
+      continue;
+    }
+    const Detected& ct = contacts_[entries[i].index];
+    double cosine = 0;
+    for (int k = 0; k < 3; ++k) cosine += ct.point.normal[k] * contacts_[nearest].point.normal[k];
+    if (!inside_facet_in_front(ct) || cosine > same_direction) drop[entries[i].index] = 1;
+  }
   std::size_t kept = 0;
   for (std::size_t a = 0; a < contacts_.size(); ++a)
     if (!drop[a]) contacts_[kept++] = contacts_[a];

@@ -82,6 +82,12 @@ class ContactStages {
   /// μ of each contact in the last solve (rows of the `contacts` set), as its law chose it
   /// for that step (static or dynamic friction): what the analyses compare the forces with.
   const Eigen::VectorXd& last_friction() const { return problem_.mu; }
+  /// The last step's local velocities, contact by contact (rows of the contacts set),
+  /// normal first: H v⁻ and H v⁺ (= W r + q, the laws' shifts taken out), from each side's
+  /// modelization (a mesh side: its nodes weighted at the point). Empty when the step had
+  /// no contacts.
+  const Eigen::VectorXd& local_velocity_begin() const { return u_begin_; }
+  const Eigen::VectorXd& local_velocity_end() const { return u_; }
   /// A restart loaded the `contacts` set (keys and what persists) from its frame: the next
   /// warm start continues from it, and the start-of-run overlap warning is not given.
   void restored() { initial_overlaps_checked_ = true; }
@@ -100,6 +106,11 @@ class ContactStages {
   Pose pose_of(std::size_t i) const;
   /// Of the contacts between one contactor and the facets of one body, keeps the nearest.
   void keep_nearest_facets();
+  /// Marks in `drop` the facet contacts at a corner (edge) of a facet that holds a nearer
+  /// contact of the same candidate (keep_nearest_facets).
+  void drop_corners_of_nearer_facets(std::vector<char>& drop) const;
+  /// A facet contact inside its facet with the candidate in front of it (kept beside the nearest).
+  bool inside_facet_in_front(const Detected& ct) const;
   /// The step's contacts as sides for the assembly (support nodes and weights).
   void fill_sides(int d);
   /// Writes the step's problem (export_problems), local or global.

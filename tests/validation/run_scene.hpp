@@ -2,6 +2,7 @@
 // Runs a scene given as text and reads its frames.
 #include <gtest/gtest.h>
 
+#include <cmath>
 #include <cstdio>
 #include <filesystem>
 #include <string>
@@ -20,6 +21,16 @@ struct SceneRun {
     return read_doubles(file, "/frames/" + frame + "/" + dataset);
   }
 };
+
+/// printf into a string: scenes written as format strings.
+inline std::string format(const char* fmt, auto... args) {
+  char buf[8192];
+  std::snprintf(buf, sizeof buf, fmt, args...);
+  return buf;
+}
+
+/// Observed order of convergence from errors e1, e2 at sizes s1 > s2.
+inline double order(double e1, double e2, double s1, double s2) { return std::log(e1 / e2) / std::log(s1 / s2); }
 
 inline SceneRun run_scene(const std::string& name, const std::string& scene) {
   const auto dir = scratch_dir(name);

@@ -12,6 +12,7 @@
 //     energy kept at θ = 0.5 and lost at θ > 0.5 as the scheme says.
 #include <algorithm>
 #include <cmath>
+#include <map>
 #include <numeric>
 
 #include "run_scene.hpp"
@@ -19,15 +20,6 @@
 using namespace moreau_test;
 
 namespace {
-
-std::string format(const char* fmt, auto... args) {
-  char buf[4096];
-  std::snprintf(buf, sizeof buf, fmt, args...);
-  return buf;
-}
-
-/// Observed order of convergence from errors at sizes s1 > s2.
-double order(double e1, double e2, double s1, double s2) { return std::log(e1 / e2) / std::log(s1 / s2); }
 
 /// Normal forces and contact points of a frame.
 struct Contacts {
@@ -200,58 +192,176 @@ TEST(ElasticBar, ImpactOnAWallLasts2LOverCAndTheBarReboundsWithItsVelocity) {
 
 // ----------------------------------------------- two stacked blocks: the patch test
 
-TEST(ElasticStack, ReactionsEqualWeightsAndTheInterfacePressureIsUniform) {
-  // Two blocks on a rigid floor under gravity, their meshes conforming at the
-  // interface: the exact solution has σyy = −ρg(depth) uniform in x, so the interface
-  // carries a uniform pressure ρ g H_top, and the reactions sum to the weights. With ν = 0
-  // the displacement is a function of y alone, which Q4 elements hold exactly at the nodes
-  // (1D bar with a consistent load): the nodal forces must be uniform to the solver's
-  // tolerance (the patch test). θ = 1 and a long step settle it. With ν = 0 the exact
-  // solution needs no tangential force, but friction is there all the same: frictionless,
-  // each block could slide sideways at no cost (a neutral mode), and rounding drifts the
-  // conforming corners apart within ~35 steps, which unloads them.
-  const double rho = 1000, g = 9.81, W = 0.2, H = 0.1, s = 0.02;
-  SceneRun run = run_scene("stack", format(R"({
+namespace {
+
+// Two blocks on a rigid floor under gravity, their meshes conforming at the interface:
+// the exact solution has σyy = −ρg(depth) uniform in x, so the interface carries a uniform
+// pressure ρ g H_top, and the reactions sum to the weights. With ν = 0 the displacement is
+// a function of y alone, which Q4 elements hold exactly at the nodes (1D bar with a
+// consistent load): the nodal forces must be uniform to the solver's tolerance (the patch
+// test). θ = 1 and a long step settle it. With ν = 0 the exact solution needs no
+// tangential force, but friction is there all the same: frictionless, each block could
+// slide sideways at no cost (a neutral mode), and rounding drifts the conforming corners
+// apart within ~35 steps, which unloads them.
+constexpr double kStackRho = 1000, kStackG = 9.81, kStackW = 0.2, kStackH = 0.1, kStackS = 0.02;
+
+/// The interface as candidate/antagonist (the upper block's nodes on the lower block's
+/// edges), or symmetric (docs/scene.md, "Contactors on meshes": each block has points and
+/// edges there, paired both ways, so each interface node is a candidate once).
+std::string stack_scene(bool symmetric) {
+  const char* lower_top = symmetric ? R"({"shape": "edge", "boundary": "ymax", "group": "lower_top"}, {"shape": "point", "boundary": "ymax", "group": "lower_top_nodes"})"
+                                    : R"({"shape": "edge", "boundary": "ymax", "group": "lower_top"})";
+  const char* upper_bottom = symmetric ? R"({"shape": "point", "boundary": "ymin", "group": "upper_bottom"}, {"shape": "edge", "boundary": "ymin", "group": "upper_bottom_edges"})"
+                                       : R"({"shape": "point", "boundary": "ymin", "group": "upper_bottom"})";
+  const char* reverse = symmetric ? R"(, {"groups": ["lower_top_nodes", "upper_bottom_edges"], "law": "rough"})" : "";
+  return format(R"({
   "format": "moreau-scene/1", "dimension": 2,
   "time": {"step": 0.02, "duration": 1.0, "theta": 1.0},
-  "gravity": [0, -9.81],
-  "materials": {"soft": {"density": 1000, "young": 1e6, "poisson": 0}},
+  "gravity": [0, -%g],
+  "materials": {"soft": {"density": %g, "young": 1e6, "poisson": 0}},
   "laws": {"rough": {"type": "coulomb", "friction": 0.5}},
   "bodies": [
     {"name": "floor", "fixed": true, "position": [0, -0.01], "contactors": [{"shape": "segment", "length": 1, "thickness": 0.02, "group": "floor"}]},
     {"name": "lower", "model": "elastic", "material": "soft", "mesh": {"generate": "rectangle", "origin": [-0.1, 0], "extent": [%g, %g], "size": %g},
-     "contactors": [{"shape": "point", "boundary": "ymin", "group": "lower_bottom"}, {"shape": "edge", "boundary": "ymax", "group": "lower_top"}]},
+     "contactors": [{"shape": "point", "boundary": "ymin", "group": "lower_bottom"}, %s]},
     {"name": "upper", "model": "elastic", "material": "soft", "mesh": {"generate": "rectangle", "origin": [-0.1, 0.1], "extent": [%g, %g], "size": %g},
-     "contactors": [{"shape": "point", "boundary": "ymin", "group": "upper_bottom"}]}
+     "contactors": [%s]}
   ],
-  "interactions": [{"groups": ["lower_bottom", "floor"], "law": "rough"}, {"groups": ["upper_bottom", "lower_top"], "law": "rough"}],
+  "interactions": [{"groups": ["lower_bottom", "floor"], "law": "rough"}, {"groups": ["upper_bottom", "lower_top"], "law": "rough"}%s],
   "solver": {"type": "nlgs", "tolerance": 1e-10, "max_iterations": 5000},
   "output": {"every": 50}
-})", W, H, s, W, H, s));
+})", kStackG, kStackRho, kStackW, kStackH, kStackS, lower_top, kStackW, kStackH, kStackS, upper_bottom, reverse);
+}
+
+struct Stack {
+  double floor = 0, interface = 0;                     ///< N/m: the sums of the normal forces
+  std::vector<std::pair<double, double>> at_interface; ///< (x, Σ normal force of the contacts at x), sorted
+  std::size_t interface_contacts = 0;
+  std::vector<double> displacement;                    ///< the last frame's, every node
+};
+
+Stack stack_run(const std::string& name, bool symmetric) {
+  SceneRun run = run_scene(name, stack_scene(symmetric));
   const std::string f = run.frames.back();
   const auto F = run.at(f, "contacts/normal_force"), x = run.at(f, "contacts/point"), bodies = run.at(f, "contacts/bodies");
-  const double weight = rho * g * W * H;  // each block, per unit thickness
-  double floor_sum = 0, interface_sum = 0;
-  std::vector<std::pair<double, double>> interface;
+  Stack r;
+  std::map<long, double> by_x;  // contacts at one interface node (both ways when symmetric), keyed by its column
   for (std::size_t i = 0; i < F.size(); ++i) {
     const bool on_floor = bodies[2 * i] == 0 || bodies[2 * i + 1] == 0;
-    (on_floor ? floor_sum : interface_sum) += F[i];
-    if (!on_floor) interface.emplace_back(x[2 * i], F[i]);
+    (on_floor ? r.floor : r.interface) += F[i];
+    if (on_floor) continue;
+    by_x[std::lround((x[2 * i] + 0.5 * kStackW) / kStackS)] += F[i];
+    ++r.interface_contacts;
   }
-  std::printf("floor reaction %.4f N/m (weights %.4f), interface %.4f N/m (upper weight %.4f)\n", floor_sum, 2 * weight,
-              interface_sum, weight);
-  EXPECT_NEAR(floor_sum, 2 * weight, 1e-6 * weight);
-  EXPECT_NEAR(interface_sum, weight, 1e-6 * weight);
+  for (const auto& [column, force] : by_x) r.at_interface.emplace_back(static_cast<double>(column) * kStackS - 0.5 * kStackW, force);
+  r.displacement = run.at(f, "elastic.nodes/displacement");
+  return r;
+}
+
+/// Checks the reactions and the uniform interface pressure; returns the largest deviation.
+double check_patch(const Stack& r) {
+  const double weight = kStackRho * kStackG * kStackW * kStackH;  // each block, per unit thickness
+  std::printf("floor reaction %.4f N/m (weights %.4f), interface %.4f N/m (upper weight %.4f), %zu contacts there\n", r.floor,
+              2 * weight, r.interface, weight, r.interface_contacts);
+  EXPECT_NEAR(r.floor, 2 * weight, 1e-6 * weight);
+  EXPECT_NEAR(r.interface, weight, 1e-6 * weight);
   // Uniform pressure p = ρ g H: an inner node carries p s, a corner node p s / 2.
-  std::sort(interface.begin(), interface.end());
-  ASSERT_EQ(interface.size(), std::size_t(std::lround(W / s)) + 1);
-  const double p = rho * g * H;
+  EXPECT_EQ(r.at_interface.size(), std::size_t(std::lround(kStackW / kStackS)) + 1);
+  const double p = kStackRho * kStackG * kStackH;
   double worst = 0;
-  for (std::size_t i = 0; i < interface.size(); ++i) {
-    const double share = (i == 0 || i + 1 == interface.size() ? 0.5 : 1.0) * s;
-    worst = std::max(worst, std::fabs(interface[i].second / share - p) / p);
+  for (std::size_t i = 0; i < r.at_interface.size(); ++i) {
+    const double share = (i == 0 || i + 1 == r.at_interface.size() ? 0.5 : 1.0) * kStackS;
+    worst = std::max(worst, std::fabs(r.at_interface[i].second / share - p) / p);
   }
-  std::printf("interface pressure: largest deviation from rho g H = %.0f Pa: %.3f%%\n", p, 100 * worst);
+  std::printf("interface pressure: largest deviation from rho g H = %.0f Pa: %.2e\n", p, worst);
+  EXPECT_LT(worst, 1e-6);
+  return worst;
+}
+
+}  // namespace
+
+TEST(ElasticStack, ReactionsEqualWeightsAndTheInterfacePressureIsUniform) {
+  const Stack r = stack_run("stack", false);
+  EXPECT_EQ(r.interface_contacts, r.at_interface.size());
+  check_patch(r);
+}
+
+TEST(ElasticStack, SymmetricContactGivesThePatchTestAndTheCandidateAntagonistAnswer) {
+  // Both blocks' interface nodes are candidates on the other block's edges: two contacts at
+  // each interface node (the node of the upper block on a lower edge, the coincident node
+  // of the lower block on an upper edge). Their sum is determined, not its split (the two
+  // rows of H are the same up to sign: W is singular there, as in LMGC90's symmetric
+  // option), so the sums per node are compared.
+  const Stack sym = stack_run("stack_symmetric", true), ca = stack_run("stack_ca", false);
+  EXPECT_EQ(sym.interface_contacts, 2 * sym.at_interface.size());
+  check_patch(sym);
+  ASSERT_EQ(sym.at_interface.size(), ca.at_interface.size());
+  double force = 0, disp = 0, umax = 0;
+  for (std::size_t i = 0; i < sym.at_interface.size(); ++i)
+    force = std::max(force, std::fabs(sym.at_interface[i].second - ca.at_interface[i].second));
+  for (std::size_t i = 0; i < sym.displacement.size(); ++i) {
+    disp = std::max(disp, std::fabs(sym.displacement[i] - ca.displacement[i]));
+    umax = std::max(umax, std::fabs(ca.displacement[i]));
+  }
+  const double weight = kStackRho * kStackG * kStackW * kStackH;
+  std::printf("symmetric vs candidate/antagonist: nodal forces differ by %.2e of the load, displacements by %.2e of the "
+              "largest (%.3e m)\n", force / weight, disp / umax, umax);
+  // Both answers are the exact one to the solver's tolerance (1e-10, relative).
+  EXPECT_LT(force, 1e-6 * weight);
+  EXPECT_LT(disp, 1e-6 * umax);
+}
+
+TEST(ElasticStack, SymmetricContactIn3DGivesThePatchTest) {
+  // The same in 3D: two H8 boxes (0.2 × 0.2 × 0.1 m, s = 0.05 m) on a rigid plane, the
+  // interface nodes of each candidates on the other's faces (point-face both ways). Uniform
+  // pressure ρ g H: an inner node carries p s², an edge node half, a corner a quarter.
+  const double rho = 1000, g = 9.81, W = 0.2, H = 0.1, s = 0.05;
+  SceneRun run = run_scene("stack_symmetric_3d", format(R"({
+  "format": "moreau-scene/1", "dimension": 3,
+  "time": {"step": 0.02, "duration": 1.0, "theta": 1.0},
+  "gravity": [0, 0, -%g],
+  "materials": {"soft": {"density": %g, "young": 1e6, "poisson": 0}},
+  "laws": {"rough": {"type": "coulomb", "friction": 0.5}},
+  "bodies": [
+    {"name": "floor", "fixed": true, "position": [0, 0, 0], "contactors": [{"shape": "plane", "group": "floor"}]},
+    {"name": "lower", "model": "elastic", "material": "soft", "mesh": {"generate": "box", "origin": [-0.1, -0.1, 0], "extent": [%g, %g, %g], "size": %g},
+     "contactors": [{"shape": "point", "boundary": "zmin", "group": "lower_bottom"}, {"shape": "face", "boundary": "zmax", "group": "lower_top"},
+                    {"shape": "point", "boundary": "zmax", "group": "lower_top_nodes"}]},
+    {"name": "upper", "model": "elastic", "material": "soft", "mesh": {"generate": "box", "origin": [-0.1, -0.1, 0.1], "extent": [%g, %g, %g], "size": %g},
+     "contactors": [{"shape": "point", "boundary": "zmin", "group": "upper_bottom"}, {"shape": "face", "boundary": "zmin", "group": "upper_bottom_faces"}]}
+  ],
+  "interactions": [{"groups": ["lower_bottom", "floor"], "law": "rough"}, {"groups": ["upper_bottom", "lower_top"], "law": "rough"},
+                   {"groups": ["lower_top_nodes", "upper_bottom_faces"], "law": "rough"}],
+  "solver": {"type": "nlgs", "tolerance": 1e-10, "max_iterations": 5000},
+  "output": {"every": 50}
+})", g, rho, W, W, H, s, W, W, H, s));
+  const std::string f = run.frames.back();
+  const auto F = run.at(f, "contacts/normal_force"), x = run.at(f, "contacts/point"), bodies = run.at(f, "contacts/bodies");
+  const double weight = rho * g * W * W * H, p = rho * g * H;
+  const int n = static_cast<int>(std::lround(W / s)) + 1;
+  std::map<std::pair<long, long>, double> at;  // Σ normal force per interface node (i, j)
+  double floor = 0, interface = 0;
+  std::size_t contacts = 0;
+  for (std::size_t c = 0; c < F.size(); ++c) {
+    if (bodies[2 * c] == 0 || bodies[2 * c + 1] == 0) {
+      floor += F[c];
+      continue;
+    }
+    interface += F[c];
+    ++contacts;
+    at[{std::lround((x[3 * c] + W / 2) / s), std::lround((x[3 * c + 1] + W / 2) / s)}] += F[c];
+  }
+  double worst = 0;
+  for (const auto& [ij, force] : at) {
+    const double share = (ij.first == 0 || ij.first == n - 1 ? 0.5 : 1.0) * (ij.second == 0 || ij.second == n - 1 ? 0.5 : 1.0) * s * s;
+    worst = std::max(worst, std::fabs(force / share - p) / p);
+  }
+  std::printf("3D symmetric: floor %.4f N (weights %.4f), interface %.4f N (upper weight %.4f), %zu contacts on %zu nodes; "
+              "pressure: largest deviation from rho g H %.2e\n", floor, 2 * weight, interface, weight, contacts, at.size(), worst);
+  EXPECT_NEAR(floor, 2 * weight, 1e-6 * weight);
+  EXPECT_NEAR(interface, weight, 1e-6 * weight);
+  EXPECT_EQ(at.size(), static_cast<std::size_t>(n * n));
+  EXPECT_EQ(contacts, 2 * at.size());
   EXPECT_LT(worst, 1e-6);
 }
 

@@ -7,8 +7,9 @@
 // relative velocity at a contact (u = Hᵀv) and r its impulse:
 //   D_impacts  += −r_n ū_n          (normal part: impacts, and contacts closing)
 //   D_friction += −r_t · ū_t        (tangential part: friction)
-//   W_boundary += −Σ p_s · w̄_s over the contacts' sides s on fixed or driven bodies (their
-//                 material-point velocity w̄ at the contact): the work walls and pistons do
+//   W_boundary += −Σ p_s · w̄_s over the contacts' sides s on fixed, driven or deformable
+//                 bodies (their material-point velocity w̄ at the contact): the work walls,
+//                 pistons and meshes do on the sample
 //   W_ext      += h (F · v̄ + τ · ω̄)  (force plugins)
 //   W_θ        += h (½ − θ) m g · (v⁺ − v⁻)  (the θ-scheme's own work; 0 for θ = ½; it telescopes
 //                 to h (½ − θ) Σ m g · (v − v₀): a boundary term, not a dissipation)
@@ -61,6 +62,24 @@ Energies energies(const AnalysisFrame& f, bool end) {
   return e;
 }
 
+/// The material-point velocity at contact c of its side s, a boundary body (fixed, driven,
+/// or deformable: the analyses see a mesh as boundary), at the step's start or end: the
+/// other side's (a sample body's) point velocity minus the relative velocity the contact
+/// measured, u = first − second (local frame, turned to world axes). For a rigid wall this
+/// is its own point velocity; for a mesh it is the velocity of its nodes weighted at the
+/// contact, which the analysis cannot see itself. With it Σ p·v̄ of the sample splits
+/// exactly into the boundary's work and the contacts' dissipation.
+void boundary_velocity(const AnalysisFrame& f, std::size_t c, int s, bool end, double out[3]) {
+  const int d = f.dimension;
+  const auto& C = f.contacts;
+  const std::size_t other = static_cast<std::size_t>(C.bodies[2 * c + (s == 0 ? 1 : 0)]);
+  point_velocity(f, other, &C.point[c * d], end, out);
+  const double* u = &(end ? C.velocity_end : C.velocity_begin)[c * d];
+  const double sign = s == 0 ? 1.0 : -1.0;  // boundary first: w = v_other + u; second: w = v_other − u
+  for (int i = 0; i < d; ++i)
+    for (int j = 0; j < d; ++j) out[j] += sign * C.frame[(c * d + i) * d + j] * u[i];
+}
+
 class Energy : public Analysis {
  public:
   static Schema schema() { return {}; }
@@ -103,8 +122,8 @@ class Energy : public Analysis {
         const std::size_t b = s == 0 ? b0 : b1;
         if (B.sample[b]) continue;
         double w0[3], w1[3], pw[3] = {0, 0, 0};
-        point_velocity(f, b, &C.point[c * d], false, w0);
-        point_velocity(f, b, &C.point[c * d], true, w1);
+        boundary_velocity(f, c, s, false, w0);
+        boundary_velocity(f, c, s, true, w1);
         for (int i = 0; i < d; ++i)
           for (int j = 0; j < d; ++j) pw[j] += C.frame[(c * d + i) * d + j] * p[i];
         const double sign = s == 0 ? 1.0 : -1.0;

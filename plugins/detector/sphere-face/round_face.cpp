@@ -32,6 +32,32 @@ struct Projection {
   bool inside = false;
 };
 
+// A point within rounding of a face's edge or corner is on it: two meshes whose boundary
+// nodes coincide (a conforming interface) keep their contacts inside the faces, with
+// exact zero weights off the corner, as the 2D edges do (round_edge.cpp). Without it a node
+// at a corner projected just outside, at distance 0 from the corner: a NaN normal.
+constexpr double on_face_tolerance = 1e-9;
+
+/// Barycentric weights within the tolerance of 0 become 0 (the others renormalised), and
+/// the point counts as inside.
+void snap_to_triangle(Projection& f) {
+  bool near = true;
+  for (int i = 0; i < 3; ++i) near = near && f.w[i] >= -on_face_tolerance;
+  if (!near) return;
+  double sum = 0;
+  for (int i = 0; i < 3; ++i) sum += (f.w[i] = f.w[i] <= on_face_tolerance ? 0.0 : f.w[i]);
+  for (int i = 0; i < 3; ++i) f.w[i] /= sum;
+  f.inside = true;
+}
+
+/// Bilinear coordinates within the tolerance outside [−1, 1] come back to its edge.
+bool snap_to_square(double& xi, double& eta) {
+  if (std::fabs(xi) > 1 + on_face_tolerance || std::fabs(eta) > 1 + on_face_tolerance) return false;
+  xi = std::clamp(xi, -1.0, 1.0);
+  eta = std::clamp(eta, -1.0, 1.0);
+  return true;
+}
+
 Projection triangle(const double* p, const double* c) {
   const V e1 = sub(p + 3, p), e2 = sub(p + 6, p), r = sub(c, p);
   V n = cross(e1, e2);
@@ -48,6 +74,7 @@ Projection triangle(const double* p, const double* c) {
   out.n = n;
   for (int k = 0; k < 3; ++k) out.x[k] = p[k] + l1 * e1[k] + l2 * e2[k];
   out.inside = out.w[0] >= 0 && l1 >= 0 && l2 >= 0;
+  snap_to_triangle(out);
   return out;
 }
 
@@ -77,6 +104,7 @@ Projection quadrangle(const double* p, const double* c) {
     eta = std::clamp(eta + seta, -3.0, 3.0);
     if (std::fabs(sxi) + std::fabs(seta) < 1e-13) break;
   }
+  const bool inside = snap_to_square(xi, eta);
   evaluate();
   Projection out;
   out.x = x;
@@ -84,7 +112,7 @@ Projection quadrangle(const double* p, const double* c) {
   out.n = cross(dxi, deta);
   const double a = std::sqrt(dot(out.n, out.n));
   for (double& v : out.n) v /= a;
-  out.inside = std::fabs(xi) <= 1 && std::fabs(eta) <= 1;
+  out.inside = inside;
   return out;
 }
 
