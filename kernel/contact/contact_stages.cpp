@@ -11,6 +11,7 @@
 #include <moreau/node_fields.hpp>
 
 #include "../run/console.hpp"
+#include "../run/stage_timer.hpp"
 #include "local_frame.hpp"
 #include "stopping_scale.hpp"
 
@@ -155,12 +156,13 @@ Pose ContactStages::pose_of(std::size_t i) const {
 }
 
 void ContactStages::keep_nearest_facets() {
-  // A candidate (a mesh node, a disk, a sphere) near a mesh boundary is found against each
-  // facet close enough; it touches one: of its contacts with the facets of one body, the
-  // one of smallest |gap| stays (ties: the first found), as LMGC90 keeps the nearest
-  // antagonist segment (docs/contacts.md, "Meshes").
+  // A candidate (a mesh node, a disk, a sphere, a corner of a polygon, box or convex
+  // shape: its feature) near a mesh boundary is found against each facet close enough;
+  // it touches one: of its contacts with the facets of one body, the one of smallest |gap|
+  // stays (ties: the first found), as LMGC90 keeps the nearest antagonist segment
+  // (docs/contacts.md, "Meshes").
   struct Entry {
-    int candidate, body;
+    int candidate, feature, body;
     double distance;
     std::size_t index;
   };
@@ -170,15 +172,18 @@ void ContactStages::keep_nearest_facets() {
     const bool f0 = facet_index_[ct.contactor[0]] >= 0, f1 = facet_index_[ct.contactor[1]] >= 0;
     if (f0 == f1) continue;
     const int facet = ct.contactor[f0 ? 0 : 1], other = ct.contactor[f0 ? 1 : 0];
-    entries.push_back(Entry{other, contactors[facet].body, std::fabs(ct.point.gap), a});
+    entries.push_back(Entry{other, ct.point.feature, contactors[facet].body, std::fabs(ct.point.gap), a});
   }
   if (entries.empty()) return;
   std::sort(entries.begin(), entries.end(), [](const Entry& x, const Entry& y) {
-    return std::tie(x.candidate, x.body, x.distance, x.index) < std::tie(y.candidate, y.body, y.distance, y.index);
+    return std::tie(x.candidate, x.feature, x.body, x.distance, x.index) <
+           std::tie(y.candidate, y.feature, y.body, y.distance, y.index);
   });
   std::vector<char> drop(contacts_.size(), 0);
   for (std::size_t i = 1; i < entries.size(); ++i)
-    if (entries[i].candidate == entries[i - 1].candidate && entries[i].body == entries[i - 1].body) drop[entries[i].index] = 1;
+    if (entries[i].candidate == entries[i - 1].candidate && entries[i].feature == entries[i - 1].feature &&
+        entries[i].body == entries[i - 1].body)
+      drop[entries[i].index] = 1;
   std::size_t kept = 0;
   for (std::size_t a = 0; a < contacts_.size(); ++a)
     if (!drop[a]) contacts_[kept++] = contacts_[a];
@@ -331,7 +336,9 @@ void ContactStages::solve(StepContext& c) {
     return;
   }
   fill_sides(d);
+  const auto t0 = StageClock::now();
   assembly_.build(st, models, sides_, solver->reads_matrix_with_factor(), problem_);
+  assembly_seconds_ += std::chrono::duration<double>(StageClock::now() - t0).count();
   q_free_ = assembly_.local_velocity(st, Velocity::free);
   u_begin_ = assembly_.local_velocity(st, Velocity::begin);
   assembly_.lend(problem_);
