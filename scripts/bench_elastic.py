@@ -57,6 +57,8 @@ def run(moreau, dim, size, steps, work):
     if p.returncode != 0:
         raise SystemExit(p.stderr)
     stages = {m.group(1): float(m.group(2)) for m in re.finditer(r"^\s+(\w+)\s+([0-9.]+) s", p.stderr, re.M)}
+    w = re.search(r"^\s+\(of which W assembly\)\s+([0-9.]+) s", p.stderr, re.M)
+    stages["w_build"] = float(w.group(1)) if w else 0.0
     rss = int(re.search(r"maxrss (\d+)", p.stderr).group(1)) / 1024
     nodes = int(subprocess.run(["h5ls", out + "/elastic.nodes/body"], capture_output=True, text=True).stdout.split("{")[1]
                 .split("}")[0])
@@ -68,10 +70,13 @@ def main():
     ap.add_argument("--moreau", default="build/bin/moreau")
     ap.add_argument("--steps", type=int, default=20)
     ap.add_argument("--quick", action="store_true", help="the two smallest sizes only")
+    ap.add_argument("--cases", help="only these, e.g. 2:0.0025,3:0.014 (dimension:element size)")
     args = ap.parse_args()
     cases = [(2, 0.02), (2, 0.01), (2, 0.005), (2, 0.0025), (2, 0.0014), (3, 0.05), (3, 0.033), (3, 0.02), (3, 0.014)]
     if args.quick:
         cases = [c for c in cases if c[1] in (0.02, 0.01, 0.05, 0.033)]
+    if args.cases:
+        cases = [(int(c.split(":")[0]), float(c.split(":")[1])) for c in args.cases.split(",")]
     print(f"| dim | DOFs | set-up incl. factorisation (s) | free velocity (ms/step) | solve incl. W (ms/step) | "
           f"update (ms/step) | total (ms/step) | peak memory (MB) |")
     print("|---|---|---|---|---|---|---|---|")

@@ -10,11 +10,13 @@
 // benchmark, docs/deformable.md) and again only when the set of driven unknowns changes.
 //
 // For the contact side: LHS_b⁻¹ on columns (apply_inverse), and the blocks of LHS_b⁻¹
-// among the nodes the contacts sit on (inverse_blocks), which W needs. Those come from
-// columns LHS_ff⁻¹ e (k solves per node, kept between steps restricted to the rows of the
-// body's boundary nodes): a node that stays in contact costs no solve at the next step.
-// Block (a, b) is always taken from the column of the lower-numbered node, so the numbers
-// do not depend on which columns were kept (restarts stay bit-identical).
+// among the nodes the contacts sit on (inverse_blocks), which W needs. With a factor that
+// shows its columns (CHOLMOD's, Eigen's LDLᵀ) those are z_a · z_b, z = D^{-1/2} L⁻¹ P e a
+// partial forward solve up the elimination tree (k per node, a small part of a full solve),
+// kept with the blocks while the nodes stay in contact. Otherwise they come from columns
+// LHS_ff⁻¹ e (k full solves per node, kept between steps restricted to the rows of the
+// body's boundary nodes). Either way block (a, b) is computed from the lower-numbered
+// node's side, so the numbers do not depend on what was kept (restarts stay bit-identical).
 #include <algorithm>
 #include <cmath>
 #include <map>
@@ -175,6 +177,7 @@ class LinearTheta : public Integrator {
     Body& B = body_of(body);
     std::vector<std::size_t> local(static_cast<std::size_t>(count));
     for (int i = 0; i < count; ++i) local[i] = nodes[i] - B.first;
+    if (B.scheme->factor().has_factor_columns()) return factor_column_blocks(B, local, out);
     // Rows not kept yet: keep them from now on (the kept columns lack them: drop those).
     bool grew = false;
     for (const std::size_t a : local) grew = B.add_row(a) || grew;
@@ -220,6 +223,58 @@ class LinearTheta : public Integrator {
       }
   }
 
+  /// inverse_blocks from the factor's columns (fem::FactorColumn): per node its k columns
+  /// z = D^{-1/2} L⁻¹ P e (a partial forward solve each, up the elimination tree only), kept
+  /// while the node is in contact, and per pair of nodes its k × k block z_a · z_b, kept
+  /// too. Blocks are always z_lower · z_higher, so they do not depend on what was kept.
+  void factor_column_blocks(Body& B, const std::vector<std::size_t>& local, double* out) const {
+    const std::size_t k = static_cast<std::size_t>(k_), m = local.size() * k;
+    // Past the memory budget, only the asked nodes' columns and blocks stay.
+    std::size_t missing = 0;
+    for (const std::size_t a : local) missing += B.z.count(a) == 0;
+    if (B.z_entries + missing * B.z_estimate > budget_bytes / sizeof(double) / 2 ||
+        B.pairs.size() > budget_bytes / sizeof(double) / 2 / (k * k)) {
+      std::map<std::size_t, std::vector<fem::FactorColumn>> asked;
+      B.z_entries = 0;
+      for (const std::size_t a : local)
+        if (auto it = B.z.find(a); it != B.z.end()) {
+          for (const auto& c : it->second) B.z_entries += c.index.size();
+          asked.emplace(a, std::move(it->second));
+        }
+      B.z = std::move(asked);
+      B.pairs.clear();
+    }
+    const auto& partition = B.scheme->partition();
+    for (const std::size_t a : local) {
+      if (B.z.count(a)) continue;
+      std::vector<fem::FactorColumn>& cols = B.z[a];
+      cols.resize(k);
+      for (std::size_t c = 0; c < k; ++c) {
+        const int eq = partition.equation(static_cast<int>(a * k + c));
+        if (eq >= 0) cols[c] = B.scheme->factor().factor_column(eq);  // constrained: none (infinite mass)
+        B.z_entries += cols[c].index.size();
+        B.z_estimate = std::max(B.z_estimate, cols[c].index.size());
+      }
+    }
+    // G(i·k + α, j·k + c) = [LHS⁻¹](a_i α, a_j c).
+    for (std::size_t j = 0; j < local.size(); ++j)
+      for (std::size_t i = 0; i < local.size(); ++i) {
+        const bool lower_i = local[i] <= local[j];
+        const std::size_t lo = lower_i ? local[i] : local[j], hi = lower_i ? local[j] : local[i];
+        auto [it, fresh] = B.pairs.try_emplace({lo, hi});
+        std::vector<double>& blk = it->second;  // blk[α k + β] = z_lo,α · z_hi,β
+        if (fresh) {
+          blk.resize(k * k);
+          const auto &zl = B.z.at(lo), &zh = B.z.at(hi);
+          for (std::size_t al = 0; al < k; ++al)
+            for (std::size_t be = 0; be < k; ++be) blk[al * k + be] = fem::dot(zl[al], zh[be]);
+        }
+        for (std::size_t c = 0; c < k; ++c)
+          for (std::size_t al = 0; al < k; ++al)
+            out[(j * k + c) * m + i * k + al] = lower_i ? blk[al * k + c] : blk[c * k + al];
+      }
+  }
+
   bool lhs_entries(const State&, std::size_t body, std::vector<LhsEntry>& entries, std::vector<int>& constrained) const override {
     const Body& B = body_of(body);
     const auto& free = B.scheme->partition().free();
@@ -246,6 +301,11 @@ class LinearTheta : public Integrator {
     std::vector<std::size_t> kept;
     std::map<std::size_t, std::size_t> row_of;
     std::map<std::size_t, std::vector<double>> columns;
+    // Or, when the factor gives its columns: per node its k columns z, per node pair the
+    // block z_a · z_b (factor_column_blocks).
+    std::map<std::size_t, std::vector<fem::FactorColumn>> z;
+    std::map<std::pair<std::size_t, std::size_t>, std::vector<double>> pairs;
+    std::size_t z_entries = 0, z_estimate = 0;
     bool add_row(std::size_t node) {
       if (row_of.count(node)) return false;
       row_of[node] = kept.size();
@@ -271,6 +331,9 @@ class LinearTheta : public Integrator {
                      e.what());
     }
     B.columns.clear();
+    B.z.clear();
+    B.pairs.clear();
+    B.z_entries = 0;
   }
 
   Body& body_of(std::size_t body) const {

@@ -118,9 +118,11 @@ class MOREAU_API Modelization : public Plugin {
     return false;
   }
   /// Fields derived from the unknowns (stresses of deformable bodies, for the output),
-  /// from the values at `depth`: called after every integrator's update (Depth::end) and
-  /// before the first frame of a run (Depth::begin). Skipped when has_derived_fields() is
-  /// false (the default).
+  /// from the values at `depth`, where the last update's ⁺ values are: called only when
+  /// they are read — before a frame is written (the first frame of a run included) and
+  /// before a hook looks at the state — once per update at most, so steps between frames
+  /// do not pay for them. Nothing in a step may depend on them (they are not restart
+  /// fields either). Skipped when has_derived_fields() is false (the default).
   virtual void derived_fields(State& state, Depth depth) {
     (void)state;
     (void)depth;
