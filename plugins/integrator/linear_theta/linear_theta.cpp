@@ -33,6 +33,8 @@ using namespace moreau;
 namespace N = moreau::node_fields;
 
 class LinearTheta : public Integrator {
+  struct Body;
+
  public:
   static Schema schema() { return {}; }
   static constexpr const char* doc =

@@ -28,6 +28,7 @@ struct FactorView {
   bool ll = false;
   bool diagonal_in_column = false;  ///< the first entry of each column is the diagonal (L_jj or D_j)
   const double* diagonal = nullptr;  ///< LDLᵀ with D apart (Eigen)
+  std::vector<double> own_diagonal;  ///< where `diagonal` points when the backend gives D by value
   std::vector<int> pivot;
 };
 
@@ -73,7 +74,9 @@ struct SolverOf final : Solver {
       v.value = L.valuePtr();
       v.ll = false;
       v.diagonal_in_column = false;
-      v.diagonal = s.vectorD().data();
+      const Eigen::VectorXd D = s.vectorD();  // returned by value: kept in the view
+      v.own_diagonal.assign(D.data(), D.data() + D.size());
+      v.diagonal = v.own_diagonal.data();
       const auto& p = s.permutationP().indices();
       v.pivot.assign(p.data(), p.data() + p.size());
       return true;
