@@ -8,7 +8,11 @@ blocks of LHS⁻¹ among the contact nodes: the stage table's "(of which W assem
 and the rest; set-up (mesh, matrices, the one factorisation of LHS_ff) is the wall time
 before the first step. Peak memory is the process's maximum resident set.
 
-    nice -n 19 python3 scripts/bench_elastic.py --moreau build/bin/moreau [--steps 20] [--quick]
+    nice -n 19 python3 scripts/bench_elastic.py --moreau build/bin/moreau [--steps 20] [--quick] [--cases 3:0.014]
+
+With MOREAU_STAGE_CLOCK=cpu in the environment every figure is processor time (the
+stages', and the set-up's: the process's user + system time minus the stages'), steadier
+than wall time on a shared machine.
 
 Prints a Markdown table (docs/deformable.md, "Benchmark: time per step").
 """
@@ -52,8 +56,8 @@ def run(moreau, dim, size, steps, work):
         json.dump(scene(dim, size, steps), f)
     out = os.path.join(work, "out.h5")
     start = time.perf_counter()
-    p = subprocess.run(["/usr/bin/time", "-f", "maxrss %M", moreau, "run", path, "--out", out], capture_output=True,
-                       text=True)
+    p = subprocess.run(["/usr/bin/time", "-f", "maxrss %M cpu %U %S", moreau, "run", path, "--out", out],
+                       capture_output=True, text=True)
     wall = time.perf_counter() - start
     if p.returncode != 0:
         raise SystemExit(p.stderr)
@@ -61,6 +65,9 @@ def run(moreau, dim, size, steps, work):
     w = re.search(r"^\s+\(of which W assembly\)\s+([0-9.]+) s", p.stderr, re.M)
     stages["w_build"] = float(w.group(1)) if w else 0.0
     rss = int(re.search(r"maxrss (\d+)", p.stderr).group(1)) / 1024
+    if os.environ.get("MOREAU_STAGE_CLOCK") == "cpu":  # stages in CPU time: the set-up too
+        cpu = re.search(r"cpu ([0-9.]+) ([0-9.]+)", p.stderr)
+        wall = float(cpu.group(1)) + float(cpu.group(2))
     nodes = int(subprocess.run(["h5ls", out + "/elastic.nodes/body"], capture_output=True, text=True).stdout.split("{")[1]
                 .split("}")[0])
     return nodes * dim, stages, wall, rss
