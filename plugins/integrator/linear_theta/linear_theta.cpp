@@ -10,13 +10,11 @@
 // benchmark, docs/deformable.md) and again only when the set of driven unknowns changes.
 //
 // For the contact side: LHS_b⁻¹ on columns (apply_inverse), and the blocks of LHS_b⁻¹
-// among the nodes the contacts sit on (inverse_blocks), which W needs. With a factor that
-// shows its columns (CHOLMOD's, Eigen's LDLᵀ) those are z_a · z_b, z = D^{-1/2} L⁻¹ P e a
-// partial forward solve up the elimination tree (k per node, a small part of a full solve),
-// kept with the blocks while the nodes stay in contact. Otherwise they come from columns
-// LHS_ff⁻¹ e (k full solves per node, kept between steps restricted to the rows of the
-// body's boundary nodes). Either way block (a, b) is computed from the lower-numbered
-// node's side, so the numbers do not depend on what was kept (restarts stay bit-identical).
+// among the nodes the contacts sit on (inverse_blocks), which W needs: z_a · z_b with
+// z = D^{-1/2} L⁻¹ P e from the factor (fem::FactorColumn: a partial forward solve up the
+// elimination tree, a small part of a full solve; k per node), kept with the pair blocks
+// while the nodes stay in contact. Block (a, b) is always z_lower · z_higher, so the
+// numbers do not depend on what was kept (restarts stay bit-identical).
 #include <algorithm>
 #include <cmath>
 #include <map>
@@ -65,11 +63,6 @@ class LinearTheta : public Integrator {
       const Eigen::Index n = static_cast<Eigen::Index>(B->nodes) * k_;
       if (B->bulk.C.rows() == 0) B->bulk.C.resize(n, n);
       B->constrained = B->bulk.fixed;
-      // The rows whose columns of LHS⁻¹ are kept: the nodes of its facet groups (where
-      // contacts can be); other nodes join them when asked.
-      if (const BodyGroups* g = st.groups(b))
-        for (const auto& [name, facets] : g->facets)
-          for (const std::size_t r : facets.nodes) B->add_row(r - B->first);
       factorise(*B);
       bodies_.push_back(std::move(B));
     }
@@ -179,50 +172,9 @@ class LinearTheta : public Integrator {
     Body& B = body_of(body);
     std::vector<std::size_t> local(static_cast<std::size_t>(count));
     for (int i = 0; i < count; ++i) local[i] = nodes[i] - B.first;
-    if (B.scheme->factor().has_factor_columns()) return factor_column_blocks(B, local, out);
-    // Rows not kept yet: keep them from now on (the kept columns lack them: drop those).
-    bool grew = false;
-    for (const std::size_t a : local) grew = B.add_row(a) || grew;
-    if (grew) B.columns.clear();
-    // Columns for the nodes that have none; past the memory budget, only the asked ones stay.
-    const std::size_t per_node = static_cast<std::size_t>(k_) * B.kept.size() * static_cast<std::size_t>(k_);
-    std::size_t missing = 0;
-    for (const std::size_t a : local) missing += B.columns.count(a) == 0;
-    if ((B.columns.size() + missing) * per_node * sizeof(double) > budget_bytes) {
-      std::map<std::size_t, std::vector<double>> asked;
-      for (const std::size_t a : local)
-        if (auto it = B.columns.find(a); it != B.columns.end()) asked.emplace(a, std::move(it->second));
-      B.columns = std::move(asked);
-    }
-    const Eigen::Index n = static_cast<Eigen::Index>(B.nodes) * k_;
-    for (const std::size_t a : local) {
-      if (B.columns.count(a)) continue;
-      Eigen::MatrixXd unit = Eigen::MatrixXd::Zero(n, k_);
-      for (int c = 0; c < k_; ++c) unit(static_cast<Eigen::Index>(a) * k_ + c, c) = 1;
-      const Eigen::MatrixXd response = B.scheme->impulse_responses(unit);
-      std::vector<double>& col = B.columns[a];  // [k columns][kept rows × k]
-      const std::size_t rk = B.kept.size() * static_cast<std::size_t>(k_);
-      col.resize(static_cast<std::size_t>(k_) * rk);
-      for (int c = 0; c < k_; ++c)
-        for (std::size_t r = 0; r < B.kept.size(); ++r)
-          for (int q = 0; q < k_; ++q)
-            col[c * rk + r * k_ + q] = response(static_cast<Eigen::Index>(B.kept[r]) * k_ + q, c);
-    }
-    // G(i·k + α, j·k + c) = [LHS⁻¹](a_i α, a_j c), from the column of the lower node.
-    const std::size_t m = static_cast<std::size_t>(count) * k_, rk = B.kept.size() * static_cast<std::size_t>(k_);
-    for (std::size_t j = 0; j < local.size(); ++j)
-      for (std::size_t i = 0; i < local.size(); ++i) {
-        const bool from_j = local[j] <= local[i];
-        const std::size_t owner = from_j ? local[j] : local[i], other = from_j ? local[i] : local[j];
-        const std::vector<double>& col = B.columns.at(owner);
-        const std::size_t row = B.row_of.at(other);
-        for (int c = 0; c < k_; ++c)
-          for (int al = 0; al < k_; ++al) {
-            // from_j: column c of node a_j at row (a_i, α); else column α of a_i at row (a_j, c).
-            const double x = from_j ? col[c * rk + row * k_ + al] : col[al * rk + row * k_ + c];
-            out[(j * k_ + c) * m + i * k_ + al] = x;
-          }
-      }
+    // Every factor linear_theta makes (the automatic backend: CHOLMOD's, or Eigen's LDLᵀ)
+    // shows its columns.
+    factor_column_blocks(B, local, out);
   }
 
   /// inverse_blocks from the factor's columns (fem::FactorColumn): per node its k columns
@@ -291,29 +243,18 @@ class LinearTheta : public Integrator {
   }
 
  private:
-  static constexpr std::size_t budget_bytes = std::size_t{256} << 20;  ///< kept columns of LHS⁻¹, per body
+  static constexpr std::size_t budget_bytes = std::size_t{256} << 20;  ///< kept factor columns and blocks, per body
 
   struct Body {
     std::size_t body = 0, first = 0, nodes = 0;
     LinearBulk bulk;
     std::vector<int> constrained;  ///< unknowns within the body, sorted
     std::unique_ptr<fem::LinearThetaScheme> scheme;
-    // Kept columns of LHS⁻¹ (see inverse_blocks): the rows kept (nodes within the body),
-    // and per node its k columns restricted to them.
-    std::vector<std::size_t> kept;
-    std::map<std::size_t, std::size_t> row_of;
-    std::map<std::size_t, std::vector<double>> columns;
-    // Or, when the factor gives its columns: per node its k columns z, per node pair the
-    // block z_a · z_b (factor_column_blocks).
+    // For W (factor_column_blocks): per node its k factor columns z, per node pair the
+    // block z_a · z_b.
     std::map<std::size_t, std::vector<fem::FactorColumn>> z;
     std::map<std::pair<std::size_t, std::size_t>, std::vector<double>> pairs;
     std::size_t z_entries = 0, z_estimate = 0;
-    bool add_row(std::size_t node) {
-      if (row_of.count(node)) return false;
-      row_of[node] = kept.size();
-      kept.push_back(node);
-      return true;
-    }
   };
 
   /// The model's name, from its node set ("<model>.nodes").
@@ -332,7 +273,6 @@ class LinearTheta : public Integrator {
       throw RunError("linear_theta: body " + std::to_string(B.body) + ": cannot factorise M + h theta C + h^2 theta^2 K: " +
                      e.what());
     }
-    B.columns.clear();
     B.z.clear();
     B.pairs.clear();
     B.z_entries = 0;
