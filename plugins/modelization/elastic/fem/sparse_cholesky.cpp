@@ -6,6 +6,8 @@
 #include <string>
 
 #ifdef MOREAU_FEM_CHOLMOD
+#include <dlfcn.h>
+
 #include <Eigen/CholmodSupport>
 #endif
 
@@ -119,6 +121,17 @@ struct CholmodLdlt : Eigen::CholmodSimplicialLDLT<Sparse, Eigen::Lower> {
   }
   bool view(FactorView& v) const { return cholmod_view(this->m_cholmodFactor, v); }
 };
+/// CHOLMOD's supernodal factorisation runs OpenMP loops (Debian's libcholmod, 4 threads),
+/// whose idle threads outlive it inside libgomp. A plugin linking CHOLMOD is unloaded at the
+/// end of a run: were libgomp unloaded with it, those threads would run unmapped code (a
+/// segfault at exit, 1 run in ~30). Keep libgomp loaded for the life of the process.
+void keep_openmp_runtime_loaded() {
+  static const bool kept = [] {
+    return dlopen("libgomp.so.1", RTLD_NOW | RTLD_NOLOAD | RTLD_NODELETE) != nullptr;
+  }();
+  (void)kept;
+}
+
 /// CHOLMOD's supernodal LLᵀ (dense blocks through BLAS: the fastest factorisation in 3D),
 /// its factor then converted to simplicial form (cholmod_change_factor, in place, a few %
 /// of the factorisation's time), whose solves — one column at a time, as a run does them —
@@ -168,6 +181,7 @@ std::unique_ptr<Solver> make_solver(CholeskyBackend backend) {
       return std::make_unique<SolverOf<Eigen::SimplicialLLT<Sparse, Eigen::Lower, Eigen::AMDOrdering<int>>>>();
 #ifdef MOREAU_FEM_CHOLMOD
     case CholeskyBackend::cholmod_supernodal:
+      keep_openmp_runtime_loaded();
       return std::make_unique<SolverOf<CholmodSupernodal>>();
     case CholeskyBackend::cholmod_simplicial:
       return std::make_unique<SolverOf<CholmodLdlt>>();
