@@ -11,6 +11,7 @@
 #include <moreau/node_fields.hpp>
 
 #include "../run/console.hpp"
+#include "../run/stage_timer.hpp"
 #include "local_frame.hpp"
 #include "stopping_scale.hpp"
 
@@ -177,7 +178,7 @@ void ContactStages::drop_corners_of_nearer_facets(std::vector<char>& drop) const
   // facet contact whose support nodes all belong to another contact's facet (same
   // candidate, same body) that supports that candidate on more of its nodes.
   struct Support {
-    int candidate, body;
+    int candidate, feature, body;
     std::size_t index;
     std::array<std::size_t, 4> nodes;  ///< the support nodes (rows of the node set)
     int count;                         ///< how many
@@ -191,16 +192,20 @@ void ContactStages::drop_corners_of_nearer_facets(std::vector<char>& drop) const
     const int side = f0 ? 0 : 1;
     const Contactor& facet = contactors[ct.contactor[side]];
     const unsigned mask = facet_support(facet, ct.point, side);
-    Support s{ct.contactor[1 - side], facet.body, a, {}, 0, &facet};
+    Support s{ct.contactor[1 - side], ct.point.feature, facet.body, a, {}, 0, &facet};
     for (int j = 0; j < facet.count; ++j)
       if (mask & (1u << j)) s.nodes[static_cast<std::size_t>(s.count++)] = facet.nodes[static_cast<std::size_t>(j)];
     supports.push_back(s);
   }
   std::sort(supports.begin(), supports.end(),
-            [](const Support& x, const Support& y) { return std::tie(x.candidate, x.body, x.index) < std::tie(y.candidate, y.body, y.index); });
+            [](const Support& x, const Support& y) {
+              return std::tie(x.candidate, x.feature, x.body, x.index) < std::tie(y.candidate, y.feature, y.body, y.index);
+            });
   for (std::size_t i = 0; i < supports.size();) {
     std::size_t j = i;
-    while (j < supports.size() && supports[j].candidate == supports[i].candidate && supports[j].body == supports[i].body) ++j;
+    while (j < supports.size() && supports[j].candidate == supports[i].candidate && supports[j].feature == supports[i].feature &&
+           supports[j].body == supports[i].body)
+      ++j;
     for (std::size_t x = i; x < j; ++x)
       for (std::size_t y = i; y < j; ++y) {
         const Support &X = supports[x], &Y = supports[y];
@@ -235,13 +240,14 @@ bool ContactStages::inside_facet_in_front(const Detected& ct) const {
 }
 
 void ContactStages::keep_nearest_facets() {
-  // A candidate (a mesh node, a disk, a sphere) near a mesh boundary is found against each
-  // facet close enough: of its contacts with the facets of one body, the corners of nearer
-  // facets go (drop_corners_of_nearer_facets), then the one of smallest |gap| stays (ties:
-  // the first found), as LMGC90 keeps the nearest antagonist segment, with the others
-  // inside their facets in front of them (inside_facet_in_front; docs/contacts.md, "Meshes").
+  // A candidate (a mesh node, a disk, a sphere, a corner of a polygon, box or convex
+  // shape: its feature) near a mesh boundary is found against each facet close enough: of
+  // its contacts with the facets of one body, the corners of nearer facets go
+  // (drop_corners_of_nearer_facets), then the one of smallest |gap| stays (ties: the first
+  // found), as LMGC90 keeps the nearest antagonist segment, with the others inside their
+  // facets in front of them (inside_facet_in_front; docs/contacts.md, "Meshes").
   struct Entry {
-    int candidate, body;
+    int candidate, feature, body;
     double distance;
     std::size_t index;
   };
@@ -253,10 +259,11 @@ void ContactStages::keep_nearest_facets() {
     const bool f0 = facet_index_[ct.contactor[0]] >= 0, f1 = facet_index_[ct.contactor[1]] >= 0;
     if (f0 == f1 || drop[a]) continue;
     const int facet = ct.contactor[f0 ? 0 : 1], other = ct.contactor[f0 ? 1 : 0];
-    entries.push_back(Entry{other, contactors[facet].body, std::fabs(ct.point.gap), a});
+    entries.push_back(Entry{other, ct.point.feature, contactors[facet].body, std::fabs(ct.point.gap), a});
   }
   std::sort(entries.begin(), entries.end(), [](const Entry& x, const Entry& y) {
-    return std::tie(x.candidate, x.body, x.distance, x.index) < std::tie(y.candidate, y.body, y.distance, y.index);
+    return std::tie(x.candidate, x.feature, x.body, x.distance, x.index) <
+           std::tie(y.candidate, y.feature, y.body, y.distance, y.index);
   });
   // The others kept beside the nearest must hold the candidate in another direction: two
   // contacts of one round candidate whose normals differ by less than 0.01 rad (a disk
@@ -266,7 +273,8 @@ void ContactStages::keep_nearest_facets() {
   constexpr double same_direction = 0.99995;  // cos 0.01
   std::size_t nearest = 0;
   for (std::size_t i = 0; i < entries.size(); ++i) {
-    if (i == 0 || entries[i].candidate != entries[i - 1].candidate || entries[i].body != entries[i - 1].body) {
+    if (i == 0 || entries[i].candidate != entries[i - 1].candidate || entries[i].feature != entries[i - 1].feature ||
+        entries[i].body != entries[i - 1].body) {
       nearest = entries[i].index;
       continue;
     }
@@ -427,7 +435,9 @@ void ContactStages::solve(StepContext& c) {
     return;
   }
   fill_sides(d);
+  const auto t0 = StageClock::now();
   assembly_.build(st, models, sides_, solver->reads_matrix_with_factor(), problem_);
+  assembly_seconds_ += std::chrono::duration<double>(StageClock::now() - t0).count();
   q_free_ = assembly_.local_velocity(st, Velocity::free);
   u_begin_ = assembly_.local_velocity(st, Velocity::begin);
   assembly_.lend(problem_);

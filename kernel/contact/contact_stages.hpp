@@ -79,6 +79,9 @@ class ContactStages {
 
   long last_iterations() const { return report_.iterations; }
   double last_error() const { return report_.error; }
+  /// Seconds (the stage clock's) spent building W — H and the modelizations' blocks of
+  /// LHS⁻¹ — within the solve stage, over the run so far.
+  double assembly_seconds() const { return assembly_seconds_; }
   /// μ of each contact in the last solve (rows of the `contacts` set), as its law chose it
   /// for that step (static or dynamic friction): what the analyses compare the forces with.
   const Eigen::VectorXd& last_friction() const { return problem_.mu; }
@@ -134,6 +137,7 @@ class ContactStages {
   std::vector<ContactPoint> scratch_;
   ContactSides sides_;
   ContactAssembly assembly_;
+  double assembly_seconds_ = 0;
   std::vector<double> start_gaps_;
   std::vector<double> swept_caps_;  ///< per contact, the largest normal shift (swept contacts)
   bool swept_caps(const StepContext& c);

@@ -16,19 +16,24 @@ namespace {
 
 class Context : public HookContext {
  public:
-  Context(StepContext& step, Stage stage, When when, std::string& stop)
-      : step_(step), stage_(stage), when_(when), stop_(stop) {}
+  Context(StepContext& step, Stage stage, When when, std::string& stop, const std::function<void()>& refresh)
+      : step_(step), stage_(stage), when_(when), stop_(stop), refresh_(refresh) {}
   Stage stage() const override { return stage_; }
   When when() const override { return when_; }
   long step() const override { return step_.step; }
   double time() const override { return step_.time; }
   double time_step() const override { return step_.h; }
   const std::vector<double>& gravity() const override { return step_.gravity; }
-  const State& state() const override { return step_.state; }
+  // A hook may read any field: the derived ones are brought up to date first.
+  const State& state() const override {
+    refresh_();
+    return step_.state;
+  }
   State& steer() override {
     if (static_cast<int>(stage_) >= static_cast<int>(Stage::solve))
       throw RunError("a hook may change the state only before the solve stage (it ran " +
                      std::string(when_ == When::before ? "before " : "after ") + std::string(stage_name(stage_)) + ")");
+    refresh_();
     return step_.state;
   }
   void request_stop(const std::string& reason) override {
@@ -40,6 +45,7 @@ class Context : public HookContext {
   Stage stage_;
   When when_;
   std::string& stop_;
+  const std::function<void()>& refresh_;
 };
 
 }  // namespace
@@ -87,11 +93,23 @@ void Scheduler::build_stages() {
   }
   stages_[static_cast<int>(Stage::update_dofs)] = [this](StepContext& c) {
     for (auto& m : w_.models) m.integrator->update_dofs(c);
-    // Then what each modelization derives from the ⁺ values (stresses, for the output).
-    for (auto& m : w_.models)
-      if (m.modelization->has_derived_fields()) m.modelization->derived_fields(c.state, Depth::end);
+    // What each modelization derives from the ⁺ values (stresses) waits until it is read.
+    derived_stale_ = true;
+    derived_depth_ = Depth::end;
   };
-  stages_[static_cast<int>(Stage::end_step)] = [](StepContext& c) { c.state.swap_depths(); };
+  stages_[static_cast<int>(Stage::end_step)] = [this](StepContext& c) {
+    c.state.swap_depths();
+    derived_depth_ = Depth::begin;
+  };
+}
+
+void Scheduler::refresh_derived_fields() {
+  if (!derived_stale_) return;
+  derived_stale_ = false;
+  for (auto& m : w_.models)
+    if (m.modelization->has_derived_fields())
+      plugin_call(m.modelization.label(), "while deriving its fields",
+                  [&] { m.modelization->derived_fields(w_.state, derived_depth_); });
 }
 
 std::string Scheduler::stage_owner(Stage s) const {
@@ -169,6 +187,7 @@ RunSummary Scheduler::run(const RunOptions& opt) {
 
   auto write = [&](long step) {
     if (!opt.sink) return;
+    refresh_derived_fields();
     check_finite(step);
     const auto t0 = StageTimer::clock::now();
     const SolverInfo solver = w_.contacts ? SolverInfo{w_.contacts->last_iterations(), w_.contacts->last_error()} : SolverInfo{};
@@ -176,11 +195,12 @@ RunSummary Scheduler::run(const RunOptions& opt) {
     opt.sink->write_frame(step, static_cast<double>(step) * w_.h, w_.state, solver, extra);
     sum.timer.add(Stage::output, StageTimer::clock::now() - t0);
   };
+  const std::function<void()> refresh = [this] { refresh_derived_fields(); };
   auto run_hooks = [&](Stage s, When when) {
     auto& list = hooks_[static_cast<int>(s)][static_cast<int>(when)];
     if (list.empty()) return;
     const auto t0 = StageTimer::clock::now();
-    Context hc(ctx, s, when, stop);
+    Context hc(ctx, s, when, stop, refresh);
     for (const Owned<Hook>* h : list) {
       try {
         (*h)->run(hc);
@@ -199,8 +219,8 @@ RunSummary Scheduler::run(const RunOptions& opt) {
     ~Reset() { set_active_progress(nullptr); }
   } reset;
   // Derived fields are not restart fields: the first frame (or a restart's) has them too.
-  for (auto& m : w_.models)
-    if (m.modelization->has_derived_fields()) m.modelization->derived_fields(w_.state, Depth::begin);
+  derived_stale_ = true;
+  derived_depth_ = Depth::begin;
   if (opt.write_first_frame) write(opt.first_step);
 
   long step = opt.first_step;
@@ -244,8 +264,10 @@ RunSummary Scheduler::run(const RunOptions& opt) {
     break;
   }
   if (progress) progress->finish(step, static_cast<double>(step) * w_.h);
+  if (!w_.hooks.empty()) refresh_derived_fields();
   for (auto& h : w_.hooks) plugin_call(h.label(), "at the end of the run", [&] { h->finish(w_.state); });
   if (opt.sink) opt.sink->close();
+  if (w_.contacts) sum.timer.set_solve_assembly(w_.contacts->assembly_seconds());
   sum.last_step = step;
   sum.stopped_by_hook = !stop.empty();
   sum.stop_reason = stop;

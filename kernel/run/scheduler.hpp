@@ -48,6 +48,14 @@ class Scheduler {
   void apply_drivers(StepContext& ctx);
   void check_finite(long step) const;
   std::string stage_owner(Stage s) const;
+  /// Fields the modelizations derive from their unknowns (stresses) are computed when they
+  /// are read — a frame written, a hook looking at the state — not at every step: the
+  /// update marks them stale, and this computes them from the step's ⁺ values (at
+  /// Depth::end until end_step swaps the depths, at Depth::begin after).
+  void refresh_derived_fields();
+
+  bool derived_stale_ = false;
+  Depth derived_depth_ = Depth::begin;
 
   World& w_;
   std::array<StageFn, stage_count> stages_;

@@ -15,6 +15,10 @@ void StageTimer::print(std::ostream& os, long steps) const {
     std::snprintf(line, sizeof line, "  %-24s %10.4f s %6.1f %%\n", std::string(stage_names[i]).c_str(), seconds_[i],
                   t > 0 ? 100.0 * seconds_[i] / t : 0.0);
     os << line;
+    if (i == static_cast<int>(Stage::solve) && solve_assembly_ > 0) {  // not a stage: no \w+ name
+      std::snprintf(line, sizeof line, "    %-22s %10.4f s\n", "(of which W assembly)", solve_assembly_);
+      os << line;
+    }
   }
   if (hooks_ > 0) {
     std::snprintf(line, sizeof line, "  %-24s %10.4f s %6.1f %%\n", "(hooks)", hooks_, t > 0 ? 100.0 * hooks_ / t : 0.0);

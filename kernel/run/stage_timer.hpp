@@ -45,6 +45,9 @@ class StageTimer {
     active_[static_cast<int>(s)] = true;
   }
   void add_hooks(clock::duration d) { hooks_ += std::chrono::duration<double>(d).count(); }
+  /// Part of the solve stage spent building W (H, the blocks of LHS⁻¹), printed under it.
+  void set_solve_assembly(double seconds) { solve_assembly_ = seconds; }
+  double solve_assembly() const { return solve_assembly_; }
   double seconds(Stage s) const { return seconds_[static_cast<int>(s)]; }
   bool active(Stage s) const { return active_[static_cast<int>(s)]; }
   double hooks() const { return hooks_; }
@@ -59,6 +62,7 @@ class StageTimer {
   std::array<double, stage_count> seconds_{};
   std::array<bool, stage_count> active_{};
   double hooks_ = 0;
+  double solve_assembly_ = 0;
 };
 
 }  // namespace moreau::kernel

@@ -10,11 +10,11 @@
 // benchmark, docs/deformable.md) and again only when the set of driven unknowns changes.
 //
 // For the contact side: LHS_b⁻¹ on columns (apply_inverse), and the blocks of LHS_b⁻¹
-// among the nodes the contacts sit on (inverse_blocks), which W needs. Those come from
-// columns LHS_ff⁻¹ e (k solves per node, kept between steps restricted to the rows of the
-// body's boundary nodes): a node that stays in contact costs no solve at the next step.
-// Block (a, b) is always taken from the column of the lower-numbered node, so the numbers
-// do not depend on which columns were kept (restarts stay bit-identical).
+// among the nodes the contacts sit on (inverse_blocks), which W needs: z_a · z_b with
+// z = D^{-1/2} L⁻¹ P e from the factor (fem::FactorColumn: a partial forward solve up the
+// elimination tree, a small part of a full solve; k per node), kept with the pair blocks
+// while the nodes stay in contact. Block (a, b) is always z_lower · z_higher, so the
+// numbers do not depend on what was kept (restarts stay bit-identical).
 #include <algorithm>
 #include <cmath>
 #include <map>
@@ -31,6 +31,8 @@ using namespace moreau;
 namespace N = moreau::node_fields;
 
 class LinearTheta : public Integrator {
+  struct Body;
+
  public:
   static Schema schema() { return {}; }
   static constexpr const char* doc =
@@ -61,11 +63,6 @@ class LinearTheta : public Integrator {
       const Eigen::Index n = static_cast<Eigen::Index>(B->nodes) * k_;
       if (B->bulk.C.rows() == 0) B->bulk.C.resize(n, n);
       B->constrained = B->bulk.fixed;
-      // The rows whose columns of LHS⁻¹ are kept: the nodes of its facet groups (where
-      // contacts can be); other nodes join them when asked.
-      if (const BodyGroups* g = st.groups(b))
-        for (const auto& [name, facets] : g->facets)
-          for (const std::size_t r : facets.nodes) B->add_row(r - B->first);
       factorise(*B);
       bodies_.push_back(std::move(B));
     }
@@ -175,48 +172,60 @@ class LinearTheta : public Integrator {
     Body& B = body_of(body);
     std::vector<std::size_t> local(static_cast<std::size_t>(count));
     for (int i = 0; i < count; ++i) local[i] = nodes[i] - B.first;
-    // Rows not kept yet: keep them from now on (the kept columns lack them: drop those).
-    bool grew = false;
-    for (const std::size_t a : local) grew = B.add_row(a) || grew;
-    if (grew) B.columns.clear();
-    // Columns for the nodes that have none; past the memory budget, only the asked ones stay.
-    const std::size_t per_node = static_cast<std::size_t>(k_) * B.kept.size() * static_cast<std::size_t>(k_);
+    // Every factor linear_theta makes (the automatic backend: CHOLMOD's, or Eigen's LDLᵀ)
+    // shows its columns.
+    factor_column_blocks(B, local, out);
+  }
+
+  /// inverse_blocks from the factor's columns (fem::FactorColumn): per node its k columns
+  /// z = D^{-1/2} L⁻¹ P e (a partial forward solve each, up the elimination tree only), kept
+  /// while the node is in contact, and per pair of nodes its k × k block z_a · z_b, kept
+  /// too. Blocks are always z_lower · z_higher, so they do not depend on what was kept.
+  void factor_column_blocks(Body& B, const std::vector<std::size_t>& local, double* out) const {
+    const std::size_t k = static_cast<std::size_t>(k_), m = local.size() * k;
+    // Past the memory budget, only the asked nodes' columns and blocks stay.
     std::size_t missing = 0;
-    for (const std::size_t a : local) missing += B.columns.count(a) == 0;
-    if ((B.columns.size() + missing) * per_node * sizeof(double) > budget_bytes) {
-      std::map<std::size_t, std::vector<double>> asked;
+    for (const std::size_t a : local) missing += B.z.count(a) == 0;
+    if (B.z_entries + missing * B.z_estimate > budget_bytes / sizeof(double) / 2 ||
+        B.pairs.size() > budget_bytes / sizeof(double) / 2 / (k * k)) {
+      std::map<std::size_t, std::vector<fem::FactorColumn>> asked;
+      B.z_entries = 0;
       for (const std::size_t a : local)
-        if (auto it = B.columns.find(a); it != B.columns.end()) asked.emplace(a, std::move(it->second));
-      B.columns = std::move(asked);
+        if (auto it = B.z.find(a); it != B.z.end()) {
+          for (const auto& c : it->second) B.z_entries += c.index.size();
+          asked.emplace(a, std::move(it->second));
+        }
+      B.z = std::move(asked);
+      B.pairs.clear();
     }
-    const Eigen::Index n = static_cast<Eigen::Index>(B.nodes) * k_;
+    const auto& partition = B.scheme->partition();
     for (const std::size_t a : local) {
-      if (B.columns.count(a)) continue;
-      Eigen::MatrixXd unit = Eigen::MatrixXd::Zero(n, k_);
-      for (int c = 0; c < k_; ++c) unit(static_cast<Eigen::Index>(a) * k_ + c, c) = 1;
-      const Eigen::MatrixXd response = B.scheme->impulse_responses(unit);
-      std::vector<double>& col = B.columns[a];  // [k columns][kept rows × k]
-      const std::size_t rk = B.kept.size() * static_cast<std::size_t>(k_);
-      col.resize(static_cast<std::size_t>(k_) * rk);
-      for (int c = 0; c < k_; ++c)
-        for (std::size_t r = 0; r < B.kept.size(); ++r)
-          for (int q = 0; q < k_; ++q)
-            col[c * rk + r * k_ + q] = response(static_cast<Eigen::Index>(B.kept[r]) * k_ + q, c);
+      if (B.z.count(a)) continue;
+      std::vector<fem::FactorColumn>& cols = B.z[a];
+      cols.resize(k);
+      for (std::size_t c = 0; c < k; ++c) {
+        const int eq = partition.equation(static_cast<int>(a * k + c));
+        if (eq >= 0) cols[c] = B.scheme->factor().factor_column(eq);  // constrained: none (infinite mass)
+        B.z_entries += cols[c].index.size();
+        B.z_estimate = std::max(B.z_estimate, cols[c].index.size());
+      }
     }
-    // G(i·k + α, j·k + c) = [LHS⁻¹](a_i α, a_j c), from the column of the lower node.
-    const std::size_t m = static_cast<std::size_t>(count) * k_, rk = B.kept.size() * static_cast<std::size_t>(k_);
+    // G(i·k + α, j·k + c) = [LHS⁻¹](a_i α, a_j c).
     for (std::size_t j = 0; j < local.size(); ++j)
       for (std::size_t i = 0; i < local.size(); ++i) {
-        const bool from_j = local[j] <= local[i];
-        const std::size_t owner = from_j ? local[j] : local[i], other = from_j ? local[i] : local[j];
-        const std::vector<double>& col = B.columns.at(owner);
-        const std::size_t row = B.row_of.at(other);
-        for (int c = 0; c < k_; ++c)
-          for (int al = 0; al < k_; ++al) {
-            // from_j: column c of node a_j at row (a_i, α); else column α of a_i at row (a_j, c).
-            const double x = from_j ? col[c * rk + row * k_ + al] : col[al * rk + row * k_ + c];
-            out[(j * k_ + c) * m + i * k_ + al] = x;
-          }
+        const bool lower_i = local[i] <= local[j];
+        const std::size_t lo = lower_i ? local[i] : local[j], hi = lower_i ? local[j] : local[i];
+        auto [it, fresh] = B.pairs.try_emplace({lo, hi});
+        std::vector<double>& blk = it->second;  // blk[α k + β] = z_lo,α · z_hi,β
+        if (fresh) {
+          blk.resize(k * k);
+          const auto &zl = B.z.at(lo), &zh = B.z.at(hi);
+          for (std::size_t al = 0; al < k; ++al)
+            for (std::size_t be = 0; be < k; ++be) blk[al * k + be] = fem::dot(zl[al], zh[be]);
+        }
+        for (std::size_t c = 0; c < k; ++c)
+          for (std::size_t al = 0; al < k; ++al)
+            out[(j * k + c) * m + i * k + al] = lower_i ? blk[al * k + c] : blk[c * k + al];
       }
   }
 
@@ -234,24 +243,18 @@ class LinearTheta : public Integrator {
   }
 
  private:
-  static constexpr std::size_t budget_bytes = std::size_t{256} << 20;  ///< kept columns of LHS⁻¹, per body
+  static constexpr std::size_t budget_bytes = std::size_t{256} << 20;  ///< kept factor columns and blocks, per body
 
   struct Body {
     std::size_t body = 0, first = 0, nodes = 0;
     LinearBulk bulk;
     std::vector<int> constrained;  ///< unknowns within the body, sorted
     std::unique_ptr<fem::LinearThetaScheme> scheme;
-    // Kept columns of LHS⁻¹ (see inverse_blocks): the rows kept (nodes within the body),
-    // and per node its k columns restricted to them.
-    std::vector<std::size_t> kept;
-    std::map<std::size_t, std::size_t> row_of;
-    std::map<std::size_t, std::vector<double>> columns;
-    bool add_row(std::size_t node) {
-      if (row_of.count(node)) return false;
-      row_of[node] = kept.size();
-      kept.push_back(node);
-      return true;
-    }
+    // For W (factor_column_blocks): per node its k factor columns z, per node pair the
+    // block z_a · z_b.
+    std::map<std::size_t, std::vector<fem::FactorColumn>> z;
+    std::map<std::pair<std::size_t, std::size_t>, std::vector<double>> pairs;
+    std::size_t z_entries = 0, z_estimate = 0;
   };
 
   /// The model's name, from its node set ("<model>.nodes").
@@ -270,7 +273,9 @@ class LinearTheta : public Integrator {
       throw RunError("linear_theta: body " + std::to_string(B.body) + ": cannot factorise M + h theta C + h^2 theta^2 K: " +
                      e.what());
     }
-    B.columns.clear();
+    B.z.clear();
+    B.pairs.clear();
+    B.z_entries = 0;
   }
 
   Body& body_of(std::size_t body) const {

@@ -6,8 +6,8 @@
 // (the seed's ModelHandler): linear_bulk gives M (consistent or lumped), C = αM + βK
 // (Rayleigh) and K, the gravity load and the fixed unknowns; `linear_theta` builds eq. 6
 // from them. For the contact side a point on a body moves with the nodes that support it:
-// u = Σ_j w_j frame v_j. After each update it derives the stresses (element centres, and
-// averaged at the nodes) for the output. The mesh's named sets become the body's groups
+// u = Σ_j w_j frame v_j. For the frames written it derives the stresses (element centres,
+// and averaged at the nodes). The mesh's named sets become the body's groups
 // (State::set_groups): contactors sit on boundary groups, drivers and forces on node groups.
 #include <algorithm>
 #include <map>

@@ -2,8 +2,8 @@
 // The field table of the `elastic` modelization (docs/deformable.md): one node row per
 // mesh node (set `elastic.nodes`, k = d unknowns: the velocity), one element row per
 // element (`elastic.elements`). The `linear_theta` integrator reads and writes the node
-// fields by their standard names (moreau/node_fields.hpp); stresses are derived after
-// each update (Modelization::derived_fields), for the output.
+// fields by their standard names (moreau/node_fields.hpp); stresses are derived when a
+// frame is written (Modelization::derived_fields), for the output.
 #include <moreau/node_fields.hpp>
 #include <moreau/state.hpp>
 #include <vector>

@@ -117,10 +117,10 @@ class MOREAU_API Modelization : public Plugin {
     (void)out;
     return false;
   }
-  /// Fields derived from the unknowns (stresses of deformable bodies, for the output),
-  /// from the values at `depth`: called after every integrator's update (Depth::end) and
-  /// before the first frame of a run (Depth::begin). Skipped when has_derived_fields() is
-  /// false (the default).
+  /// Fields derived from the unknowns (stresses, for the output) from the values at `depth` (where the
+  /// last update's ⁺ values are), only when read: before a frame is written (the first one included) and
+  /// before a hook looks at the state, once per update at most; steps between frames do not pay for them,
+  /// and nothing in a step may depend on them (nor restarts). Skipped unless has_derived_fields().
   virtual void derived_fields(State& state, Depth depth) {
     (void)state;
     (void)depth;
