@@ -166,6 +166,13 @@ class Auto : public Solver {
       // sweeps against 1.2 for APGD; at a few hundred contacts both follow the model.
       const double bytes = 8 * record * nc_, cache = 2e6;
       if (bytes > cache) costs_.sweep *= std::min(4.0, 1 + 1.5 * std::log2(bytes / cache));
+      // Where that factor reaches its cap (records beyond 4× the cache: about 2·10⁴ contacts
+      // of spheres), the first NLGS stage costs as much as APGD's whole warm solve before its
+      // rate is even measured (10⁴ spheres: ~50 ms a step), so the slices start at once, as
+      // with `nlgs_sweeps: 0`; NLGS stays a member of the slices.
+      nlgs_first_ = bytes < 4 * cache;
+    } else {
+      nlgs_first_ = true;
     }
     start_ = r;
     best_ = r;
@@ -221,7 +228,7 @@ class Auto : public Solver {
 
     // 1. The first member: NLGS on the `nlgs` schedule, or the incumbent on thrice its work.
     const int first = inc >= 0 ? inc : nlgs_member;
-    if (first == nlgs_member && nlgs_sweeps_ > 0) {
+    if (first == nlgs_member && nlgs_sweeps_ > 0 && nlgs_first_) {
       MemberState& ms = m[nlgs_member];
       const double before = work_;
       const long before_it = total_;
@@ -572,6 +579,7 @@ class Auto : public Solver {
   const LocalProblem* P_ = nullptr;
   double nc_ = 0;
   bool bodies_ = false;
+  bool nlgs_first_ = true;  // run the first NLGS stage (false: records far beyond the caches)
   WorkCosts costs_;
   Eigen::VectorXd start_, best_;
   double best_err_ = 0;
