@@ -36,6 +36,10 @@ DofPartition::DofPartition(int dofs, const std::vector<int>& constrained)
 
 SparseMatrix DofPartition::block(const SparseMatrix& A, const std::vector<int>& columns) const {
   SparseMatrix B(static_cast<Eigen::Index>(free_.size()), static_cast<Eigen::Index>(columns.size()));
+  // No columns (no constrained DOFs, as for any body without fixed nodes; or no free ones):
+  // Eigen 3.4's reserve() then makeCompressed() on a matrix without columns writes past its
+  // outer index array (AddressSanitizer, heap-buffer-overflow). The empty matrix is the block.
+  if (columns.empty()) return B;
   std::vector<int> count(columns.size());
   for (std::size_t c = 0; c < columns.size(); ++c)
     for (SparseMatrix::InnerIterator it(A, columns[c]); it; ++it) count[c] += equation_[it.row()] >= 0;

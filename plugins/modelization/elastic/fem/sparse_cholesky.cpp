@@ -14,6 +14,16 @@
 namespace moreau::fem {
 namespace {
 
+#ifdef MOREAU_FEM_CHOLMOD
+/// CHOLMOD brings libgomp (OpenMP) into the plugin that uses it, and libgomp is not made
+/// to be unloaded with that plugin: it keeps memory it allocates when it loads in a global
+/// of its own (LeakSanitizer reports it as a leak once the library is gone: 8 bytes at the
+/// end of every run or check of a scene with an elastic body), and OpenMP worker threads
+/// would be left in code no longer mapped. Kept loaded for the life of the process
+/// (RTLD_NODELETE, the handle never closed), as if the program had linked it.
+[[maybe_unused]] const bool gomp_kept_loaded = dlopen("libgomp.so.1", RTLD_NOW | RTLD_NOLOAD | RTLD_NODELETE) != nullptr;
+#endif
+
 using Sparse = Eigen::SparseMatrix<double>;
 
 /// A simplicial factor P A Pᵀ = L D Lᵀ as compressed columns: column j holds its entries
