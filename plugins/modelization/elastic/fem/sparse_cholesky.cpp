@@ -19,7 +19,9 @@ namespace {
 /// to be unloaded with that plugin: it keeps memory it allocates when it loads in a global
 /// of its own (LeakSanitizer reports it as a leak once the library is gone: 8 bytes at the
 /// end of every run or check of a scene with an elastic body), and OpenMP worker threads
-/// would be left in code no longer mapped. Kept loaded for the life of the process
+/// would be left in code no longer mapped (the supernodal factorisation runs OpenMP loops,
+/// 4 threads in Debian's libcholmod, whose idle threads outlive it: a segfault at exit in
+/// ~1 run of 30 when libgomp went with the plugin). Kept loaded for the life of the process
 /// (RTLD_NODELETE, the handle never closed), as if the program had linked it.
 [[maybe_unused]] const bool gomp_kept_loaded = dlopen("libgomp.so.1", RTLD_NOW | RTLD_NOLOAD | RTLD_NODELETE) != nullptr;
 #endif
@@ -131,16 +133,6 @@ struct CholmodLdlt : Eigen::CholmodSimplicialLDLT<Sparse, Eigen::Lower> {
   }
   bool view(FactorView& v) const { return cholmod_view(this->m_cholmodFactor, v); }
 };
-/// CHOLMOD's supernodal factorisation runs OpenMP loops (Debian's libcholmod, 4 threads),
-/// whose idle threads outlive it inside libgomp. A plugin linking CHOLMOD is unloaded at the
-/// end of a run: were libgomp unloaded with it, those threads would run unmapped code (a
-/// segfault at exit, 1 run in ~30). Keep libgomp loaded for the life of the process.
-void keep_openmp_runtime_loaded() {
-  static const bool kept = [] {
-    return dlopen("libgomp.so.1", RTLD_NOW | RTLD_NOLOAD | RTLD_NODELETE) != nullptr;
-  }();
-  (void)kept;
-}
 
 /// CHOLMOD's supernodal LLᵀ (dense blocks through BLAS: the fastest factorisation in 3D),
 /// its factor then converted to simplicial form (cholmod_change_factor, in place, a few %
@@ -191,7 +183,6 @@ std::unique_ptr<Solver> make_solver(CholeskyBackend backend) {
       return std::make_unique<SolverOf<Eigen::SimplicialLLT<Sparse, Eigen::Lower, Eigen::AMDOrdering<int>>>>();
 #ifdef MOREAU_FEM_CHOLMOD
     case CholeskyBackend::cholmod_supernodal:
-      keep_openmp_runtime_loaded();
       return std::make_unique<SolverOf<CholmodSupernodal>>();
     case CholeskyBackend::cholmod_simplicial:
       return std::make_unique<SolverOf<CholmodLdlt>>();
