@@ -3,6 +3,7 @@
 #include <iostream>
 #include <moreau/version.hpp>
 
+#include "../io/output_writer.hpp"
 #include "../text/did_you_mean.hpp"
 #include "commands.hpp"
 #include "fclib_cli.hpp"
@@ -13,11 +14,13 @@ namespace {
 /// What `moreau --version` prints: the program, and the versions of its contracts.
 std::string version_text() {
   return std::string("moreau ") + MOREAU_VERSION + " (plugin ABI " + std::to_string(MOREAU_ABI_VERSION) + ", SDK " +
-         MOREAU_SDK_VERSION + ", built with " + MOREAU_BUILD_ID + "; scene format moreau-scene/1, output moreau-output/1)";
+         MOREAU_SDK_VERSION + ", built with " + MOREAU_BUILD_ID + "; scene format moreau-scene/1, output " + moreau::io::output_format + ")";
 }
 
 /// After a parse error: "did you mean" for a mistyped command or option, if one is close.
-void suggest(const CLI::App& app, int argc, char** argv) {
+/// True when it named an unknown command (CLI11's own "A subcommand is required" would then
+/// only contradict it).
+bool suggest(const CLI::App& app, int argc, char** argv) {
   const CLI::App* in = &app;
   for (int i = 1; i < argc; ++i) {
     const std::string word = argv[i];
@@ -53,10 +56,11 @@ void suggest(const CLI::App& app, int argc, char** argv) {
       std::cerr << "unknown command '" << word << "'" << (hint.empty() ? "" : hint) << " (commands:";
       for (const auto& n : names) std::cerr << " " << n;
       std::cerr << ")\n";
-      break;
+      return true;
     }
     in = next;
   }
+  return false;
 }
 
 }  // namespace
@@ -101,7 +105,10 @@ int main(int argc, char** argv) {
   try {
     app.parse(argc, argv);
   } catch (const CLI::ParseError& e) {
-    if (e.get_exit_code() != 0) suggest(app, argc, argv);
+    if (e.get_exit_code() != 0 && suggest(app, argc, argv)) {
+      std::cerr << "Run with --help for more information.\n";
+      return 2;
+    }
     const int code = app.exit(e);
     return code == 0 ? 0 : 2;  // usage errors are bad input
   }

@@ -59,7 +59,7 @@ TEST(Newcomer, VersionNamesTheProgramAndItsContracts) {
   const Result r = run_moreau({"--version"});
   EXPECT_EQ(r.code, 0) << r.err;
   EXPECT_EQ(r.out.rfind("moreau 0.", 0), 0u) << r.out;
-  for (const char* part : {"plugin ABI ", "SDK ", "moreau-scene/1", "moreau-output/1"})
+  for (const char* part : {"plugin ABI ", "SDK ", "moreau-scene/1", "moreau-output/2"})
     EXPECT_NE(r.out.find(part), std::string::npos) << part << " in: " << r.out;
 }
 
@@ -117,6 +117,7 @@ TEST(Newcomer, DidYouMeanForEveryUnknownNameIgnoringCase) {
   const Result command = run_moreau({"rnu", "scene.json"});
   EXPECT_EQ(command.code, 2);
   EXPECT_NE(command.err.find("unknown command 'rnu'; did you mean 'run'?"), std::string::npos) << command.err;
+  EXPECT_EQ(command.err.find("A subcommand is required"), std::string::npos) << command.err;
   const Result option = run_moreau({"run", "scene.json", "--Steps", "3"});
   EXPECT_EQ(option.code, 2);
   EXPECT_NE(option.err.find("unknown option --Steps; did you mean \"--steps\"?"), std::string::npos) << option.err;
