@@ -6,25 +6,11 @@
 #include <string>
 
 #ifdef MOREAU_FEM_CHOLMOD
-#include <dlfcn.h>
-
 #include <Eigen/CholmodSupport>
 #endif
 
 namespace moreau::fem {
 namespace {
-
-#ifdef MOREAU_FEM_CHOLMOD
-/// CHOLMOD brings libgomp (OpenMP) into the plugin that uses it, and libgomp is not made
-/// to be unloaded with that plugin: it keeps memory it allocates when it loads in a global
-/// of its own (LeakSanitizer reports it as a leak once the library is gone: 8 bytes at the
-/// end of every run or check of a scene with an elastic body), and OpenMP worker threads
-/// would be left in code no longer mapped (the supernodal factorisation runs OpenMP loops,
-/// 4 threads in Debian's libcholmod, whose idle threads outlive it: a segfault at exit in
-/// ~1 run of 30 when libgomp went with the plugin). Kept loaded for the life of the process
-/// (RTLD_NODELETE, the handle never closed), as if the program had linked it.
-[[maybe_unused]] const bool gomp_kept_loaded = dlopen("libgomp.so.1", RTLD_NOW | RTLD_NOLOAD | RTLD_NODELETE) != nullptr;
-#endif
 
 using Sparse = Eigen::SparseMatrix<double>;
 
