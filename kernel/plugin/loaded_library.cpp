@@ -3,6 +3,7 @@
 #include <boost/dll/shared_library.hpp>
 #include <moreau/error.hpp>
 #include <moreau/plugin.hpp>
+#include <system_error>
 
 #include "boundary.hpp"
 
@@ -26,8 +27,14 @@ LibraryHandle LoadedLibrary::open(const std::filesystem::path& path) {
     // message, not found at its first call in the middle of a run (exit 127).
     const LoadingLibrary loading(file);
     impl->lib.load(path, boost::dll::load_mode::rtld_now | boost::dll::load_mode::rtld_local);
-  } catch (const std::exception& e) {
+  } catch (const std::system_error& e) {  // the loader's own failure (dlerror's message)
     throw InputError("", std::string("failed to load plugin library: ") + e.what(), file);
+  } catch (const std::exception& e) {
+    // A static constructor of the library threw and the exception crossed dlopen (it does
+    // under AddressSanitizer's dlopen; otherwise it ends in std::terminate, which
+    // guarded.cpp reports in the same words).
+    throw InputError("", file + ": the plugin library threw while it was being loaded (a static constructor): " + e.what(),
+                     file);
   }
   if (!impl->lib.has("moreau_plugin_manifest"))
     throw InputError("", "not a moreau plugin: the library exports no 'moreau_plugin_manifest' entry point", file);
