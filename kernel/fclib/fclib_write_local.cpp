@@ -61,6 +61,31 @@ void write_pair(hid_t where, const LocalProblem& p, const Eigen::VectorXd& r) {
   write_vector(where, "u", u);
 }
 
+/// The "info" group both forms carry.
+void write_info(hid_t root, const ProblemInfo& info) {
+  h5::Id i = make_group(root, "info");
+  write_text(i.get(), "title", info.title);
+  write_text(i.get(), "description", info.description);
+  write_text(i.get(), "math_info", info.math_info);
+}
+
+/// /guesses/1 and /solution, each written by `write_one(group, r)` (the local form's (r, u),
+/// the global form's (r, v, u)).
+template <class WriteOne>
+void write_guess_and_solution(hid_t file, const Eigen::VectorXd* guess_r, const Eigen::VectorXd* solution_r,
+                              const WriteOne& write_one) {
+  if (guess_r) {
+    h5::Id g = make_group(file, "guesses");
+    write_int(g.get(), "number_of_guesses", 1);
+    h5::Id one = make_group(g.get(), "1");
+    write_one(one.get(), *guess_r);
+  }
+  if (solution_r) {
+    h5::Id s = make_group(file, "solution");
+    write_one(s.get(), *solution_r);
+  }
+}
+
 void write_file(const std::string& path, const LocalProblem& p, const ProblemInfo& info,
                 const Eigen::VectorXd* guess_r, const Eigen::VectorXd* solution_r) {
   h5::MemoryFile f(path);
@@ -76,22 +101,9 @@ void write_file(const std::string& path, const LocalProblem& p, const ProblemInf
     write_vector(v.get(), "q", p.q);
     write_vector(v.get(), "mu", p.mu);
   }
-  {
-    h5::Id i = make_group(root.get(), "info");
-    write_text(i.get(), "title", info.title);
-    write_text(i.get(), "description", info.description);
-    write_text(i.get(), "math_info", info.math_info);
-  }
-  if (guess_r) {
-    h5::Id g = make_group(f.get(), "guesses");
-    write_int(g.get(), "number_of_guesses", 1);
-    h5::Id one = make_group(g.get(), "1");
-    write_pair(one.get(), p, *guess_r);
-  }
-  if (solution_r) {
-    h5::Id s = make_group(f.get(), "solution");
-    write_pair(s.get(), p, *solution_r);
-  }
+  write_info(root.get(), info);
+  write_guess_and_solution(f.get(), guess_r, solution_r,
+                           [&](hid_t where, const Eigen::VectorXd& r) { write_pair(where, p, r); });
   root.reset();
   // Written out through a temporary file renamed into place, errors named (h5.hpp).
   f.save_atomically(path);
@@ -115,28 +127,14 @@ void write_global_file(const std::string& path, const GlobalProblem& g, const Pr
     write_vector(v.get(), "w", g.w);
     write_vector(v.get(), "mu", g.mu);
   }
-  {
-    h5::Id i = make_group(root.get(), "info");
-    write_text(i.get(), "title", info.title);
-    write_text(i.get(), "description", info.description);
-    write_text(i.get(), "math_info", info.math_info);
-  }
+  write_info(root.get(), info);
   auto triple = [&](hid_t where, const Eigen::VectorXd& r) {
     const Eigen::VectorXd v = global_velocity(g, r);
     write_vector(where, "r", r);
     write_vector(where, "v", v);
     write_vector(where, "u", Eigen::VectorXd(g.H.transpose() * v + g.w));
   };
-  if (guess_r) {
-    h5::Id gs = make_group(f.get(), "guesses");
-    write_int(gs.get(), "number_of_guesses", 1);
-    h5::Id one = make_group(gs.get(), "1");
-    triple(one.get(), *guess_r);
-  }
-  if (solution_r) {
-    h5::Id s = make_group(f.get(), "solution");
-    triple(s.get(), *solution_r);
-  }
+  write_guess_and_solution(f.get(), guess_r, solution_r, triple);
   root.reset();
   f.save_atomically(path);  // as write_file
 }
