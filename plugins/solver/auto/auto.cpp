@@ -157,6 +157,7 @@ class Auto : public Solver {
     if (!bodies_) sweeper_.prepare(P);
     nlgs::fixed_last_order(P, order_);
     costs_ = WorkCosts::of(P, bodies_);
+    bool nlgs_first = true;  // run the first NLGS stage (false: records far beyond the caches)
     if (bodies_) {
       const double record = static_cast<double>(body_sweeper_.record_size());
       costs_.sweep = nc_ * (0.3 * record + (d == 2 ? 5.0 : 15.0)) + 200;
@@ -170,9 +171,7 @@ class Auto : public Solver {
       // of spheres), the first NLGS stage costs as much as APGD's whole warm solve before its
       // rate is even measured (10⁴ spheres: ~50 ms a step), so the slices start at once, as
       // with `nlgs_sweeps: 0`; NLGS stays a member of the slices.
-      nlgs_first_ = bytes < 4 * cache;
-    } else {
-      nlgs_first_ = true;
+      nlgs_first = bytes < 4 * cache;
     }
     start_ = r;
     best_ = r;
@@ -228,7 +227,7 @@ class Auto : public Solver {
 
     // 1. The first member: NLGS on the `nlgs` schedule, or the incumbent on thrice its work.
     const int first = inc >= 0 ? inc : nlgs_member;
-    if (first == nlgs_member && nlgs_sweeps_ > 0 && nlgs_first_) {
+    if (first == nlgs_member && nlgs_sweeps_ > 0 && nlgs_first) {
       MemberState& ms = m[nlgs_member];
       const double before = work_;
       const long before_it = total_;
@@ -579,7 +578,6 @@ class Auto : public Solver {
   const LocalProblem* P_ = nullptr;
   double nc_ = 0;
   bool bodies_ = false;
-  bool nlgs_first_ = true;  // run the first NLGS stage (false: records far beyond the caches)
   WorkCosts costs_;
   Eigen::VectorXd start_, best_;
   double best_err_ = 0;
