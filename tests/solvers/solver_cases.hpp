@@ -6,7 +6,6 @@
 #include <gtest/gtest.h>
 
 #include <Eigen/Dense>
-#include <chrono>
 #include <moreau/contact_error.hpp>
 #include <moreau/solver.hpp>
 #include <nlohmann/json.hpp>
@@ -122,19 +121,18 @@ inline LocalProblem random_problem(int d, int bodies, int nc, double mu, double 
 
 inline std::string shared(const std::string& f) { return std::string(MOREAU_SHARED_DIR) + "/fclib/" + f; }
 
-/// Runs solver `name` on a shared FCLib file from r = 0: honest, converged to `tol`, and
-/// under `seconds` of wall time.
-inline void fclib_case(const std::string& name, const std::string& file, double tol, long max_it, double seconds) {
+/// Runs solver `name` on a shared FCLib file from r = 0: honest and converged to `tol`
+/// within `max_it` iterations. No wall-clock limit: speed is the benchmarks' business
+/// (a 5 s limit failed under AddressSanitizer on a loaded machine; the iteration cap is
+/// what bounds a runaway solve).
+inline void fclib_case(const std::string& name, const std::string& file, double tol, long max_it) {
   auto prob = moreau::fclib::read(shared(file));
   auto s = make(name, {{"tolerance", tol}, {"max_iterations", max_it}});
   Eigen::VectorXd r = Eigen::VectorXd::Zero(prob.local.dim * prob.local.contacts()), u;
-  const auto t0 = std::chrono::steady_clock::now();
   const SolverReport rep = s->solve(prob.local, r, u);
-  const double t = std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
   expect_honest(prob.local, r, u, rep, tol, name + " on " + file);
   EXPECT_TRUE(rep.converged) << name << " on " << file << ": error " << rep.error << " after " << rep.iterations << " iterations";
   EXPECT_LE(rep.error, tol);
-  EXPECT_LT(t, seconds) << name << " on " << file;
 }
 
 // ---- hand-made problems with known answers ------------------------------------------

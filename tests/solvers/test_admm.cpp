@@ -18,9 +18,9 @@ TEST(Admm, NotConvergedIsReportedAsSuch) { not_converged("admm"); }
 TEST(Admm, WarmStartAndEdgeCases) { warm_start("admm"); }
 
 TEST(Admm, SharedFclibProblems) {
-  fclib_case("admm", "fclib-local_problem_test.hdf5", 1e-8, 20000, 5);
-  fclib_case("admm", "faf-Capsules-i97-269.hdf5", 1e-8, 20000, 5);
-  fclib_case("admm", "faf-Box_Stacks-i0035-31-0.hdf5", 1e-8, 20000, 5);
-  fclib_case("admm", "CubeH8.hdf5", 1e-8, 20000, 5);
-  fclib_case("admm", "spheres-in-a-box-98-i10000-256-10.hdf5", 1e-4, 20000, 5);  // 1e-8 takes ~1e5 iterations
+  fclib_case("admm", "fclib-local_problem_test.hdf5", 1e-8, 20000);
+  fclib_case("admm", "faf-Capsules-i97-269.hdf5", 1e-8, 20000);
+  fclib_case("admm", "faf-Box_Stacks-i0035-31-0.hdf5", 1e-8, 20000);
+  fclib_case("admm", "CubeH8.hdf5", 1e-8, 20000);
+  fclib_case("admm", "spheres-in-a-box-98-i10000-256-10.hdf5", 1e-4, 20000);  // 1e-8 takes ~1e5 iterations
 }

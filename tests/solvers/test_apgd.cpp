@@ -20,5 +20,5 @@ TEST(Apgd, WarmStartAndEdgeCases) { warm_start("apgd"); }
 TEST(Apgd, SharedFclibProblems) {
   for (const char* f : {"fclib-local_problem_test.hdf5", "faf-Capsules-i97-269.hdf5", "faf-Box_Stacks-i0035-31-0.hdf5",
                         "spheres-in-a-box-98-i10000-256-10.hdf5", "CubeH8.hdf5"})
-    fclib_case("apgd", f, 1e-8, 100000, 5);
+    fclib_case("apgd", f, 1e-8, 100000);
 }

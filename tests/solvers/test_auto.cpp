@@ -34,7 +34,7 @@ TEST(Auto, CountsTheIterationsOfEveryStage) {
 TEST(Auto, SharedFclibProblems) {
   for (const char* f : {"fclib-local_problem_test.hdf5", "faf-Capsules-i97-269.hdf5", "faf-Box_Stacks-i0035-31-0.hdf5",
                         "spheres-in-a-box-98-i10000-256-10.hdf5", "CubeH8.hdf5"}) {
-    fclib_case("auto", f, 1e-8, 20000, 5);
-    fclib_case("auto", f, 1e-4, 20000, 5);
+    fclib_case("auto", f, 1e-8, 20000);
+    fclib_case("auto", f, 1e-4, 20000);
   }
 }

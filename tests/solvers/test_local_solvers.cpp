@@ -96,10 +96,10 @@ TEST_P(NlgsLocal, RandomProblemsWithLargeFriction) { random_problems(spec(), 1e-
 TEST_P(NlgsLocal, NotConvergedIsReportedAsSuch) { not_converged(spec()); }
 TEST_P(NlgsLocal, WarmStartAndEdgeCases) { warm_start(spec()); }
 TEST_P(NlgsLocal, SharedFclibProblems) {
-  fclib_case(spec(), "faf-Capsules-i97-269.hdf5", 1e-8, 100000, 20);
-  fclib_case(spec(), "faf-Box_Stacks-i0035-31-0.hdf5", 1e-8, 100000, 20);
-  fclib_case(spec(), "CubeH8.hdf5", 1e-8, 100000, 20);
-  fclib_case(spec(), "fclib-local_problem_test.hdf5", 1e-4, 100000, 20);
+  fclib_case(spec(), "faf-Capsules-i97-269.hdf5", 1e-8, 100000);
+  fclib_case(spec(), "faf-Box_Stacks-i0035-31-0.hdf5", 1e-8, 100000);
+  fclib_case(spec(), "CubeH8.hdf5", 1e-8, 100000);
+  fclib_case(spec(), "fclib-local_problem_test.hdf5", 1e-4, 100000);
 }
 
 INSTANTIATE_TEST_SUITE_P(Methods, NlgsLocal, ::testing::Values("projection", "desaxce", "alart_curnier"));

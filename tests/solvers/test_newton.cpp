@@ -20,5 +20,5 @@ TEST(Newton, WarmStartAndEdgeCases) { warm_start("newton"); }
 TEST(Newton, SharedFclibProblems) {
   for (const char* f : {"fclib-local_problem_test.hdf5", "faf-Capsules-i97-269.hdf5", "faf-Box_Stacks-i0035-31-0.hdf5",
                         "spheres-in-a-box-98-i10000-256-10.hdf5", "CubeH8.hdf5"})
-    fclib_case("newton", f, 1e-8, 200, 5);
+    fclib_case("newton", f, 1e-8, 200);
 }

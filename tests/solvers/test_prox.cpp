@@ -22,14 +22,14 @@ TEST_P(Prox, RandomProblemsWithLargeFriction) { random_problems(spec(), 1e-8, 6,
 TEST_P(Prox, NotConvergedIsReportedAsSuch) { not_converged(spec()); }
 TEST_P(Prox, WarmStartAndEdgeCases) { warm_start(spec()); }
 TEST_P(Prox, SharedFclibProblems) {
-  fclib_case(spec(), "faf-Capsules-i97-269.hdf5", 1e-8, 100000, 20);
-  fclib_case(spec(), "faf-Box_Stacks-i0035-31-0.hdf5", 1e-8, 100000, 20);
-  fclib_case(spec(), "CubeH8.hdf5", 1e-8, 100000, 20);
+  fclib_case(spec(), "faf-Capsules-i97-269.hdf5", 1e-8, 100000);
+  fclib_case(spec(), "faf-Box_Stacks-i0035-31-0.hdf5", 1e-8, 100000);
+  fclib_case(spec(), "CubeH8.hdf5", 1e-8, 100000);
   // Around Newton, the two problems Gauss–Seidel alone stalls on reach 1e-8; around NLGS
   // the regularisation speeds the sweeps up but they still stall near 1e-5 there.
   const double hard = GetParam() == "newton" ? 1e-8 : 1e-4;
-  fclib_case(spec(), "fclib-local_problem_test.hdf5", hard, 100000, 20);
-  fclib_case(spec(), "spheres-in-a-box-98-i10000-256-10.hdf5", hard, GetParam() == "newton" ? 100000 : 5000, 60);
+  fclib_case(spec(), "fclib-local_problem_test.hdf5", hard, 100000);
+  fclib_case(spec(), "spheres-in-a-box-98-i10000-256-10.hdf5", hard, GetParam() == "newton" ? 100000 : 5000);
 }
 
 INSTANTIATE_TEST_SUITE_P(Inner, Prox, ::testing::Values("nlgs", "newton"));

@@ -18,10 +18,10 @@ TEST(Psor, NotConvergedIsReportedAsSuch) { not_converged("psor"); }
 TEST(Psor, WarmStartAndEdgeCases) { warm_start("psor"); }
 
 TEST(Psor, SharedFclibProblems) {
-  fclib_case("psor", "faf-Capsules-i97-269.hdf5", 1e-8, 100000, 5);
-  fclib_case("psor", "faf-Box_Stacks-i0035-31-0.hdf5", 1e-8, 100000, 5);
-  fclib_case("psor", "CubeH8.hdf5", 1e-8, 100000, 5);
+  fclib_case("psor", "faf-Capsules-i97-269.hdf5", 1e-8, 100000);
+  fclib_case("psor", "faf-Box_Stacks-i0035-31-0.hdf5", 1e-8, 100000);
+  fclib_case("psor", "CubeH8.hdf5", 1e-8, 100000);
   // Gauss–Seidel-like: 1e-4 only on the hard ones (1e-8 stalls near 1e-6 / 6e-5).
-  fclib_case("psor", "spheres-in-a-box-98-i10000-256-10.hdf5", 1e-4, 100000, 5);
-  fclib_case("psor", "fclib-local_problem_test.hdf5", 1e-4, 100000, 5);
+  fclib_case("psor", "spheres-in-a-box-98-i10000-256-10.hdf5", 1e-4, 100000);
+  fclib_case("psor", "fclib-local_problem_test.hdf5", 1e-4, 100000);
 }
