@@ -152,6 +152,7 @@ class Auto : public Solver {
     if (start_err <= tol_) {
       rep.error = start_err;
       rep.converged = true;
+      rep.work = start_work(P, r);
       return rep;
     }
     if (!bodies_) sweeper_.prepare(P);
@@ -160,18 +161,12 @@ class Auto : public Solver {
     bool nlgs_first = true;  // run the first NLGS stage (false: records far beyond the caches)
     if (bodies_) {
       const double record = static_cast<double>(body_sweeper_.record_size());
-      costs_.sweep = nc_ * (0.3 * record + (d == 2 ? 5.0 : 15.0)) + 200;
-      // Records beyond the caches: a sweep visits contacts in order and the bodies' Δv at
-      // random, and becomes memory-bound, where APGD's products stream. Measured on 10⁴
-      // touching spheres (30894 contacts, 12 MB of records): 4.3 ns per counted unit for the
-      // sweeps against 1.2 for APGD; at a few hundred contacts both follow the model.
-      const double bytes = 8 * record * nc_, cache = 2e6;
-      if (bytes > cache) costs_.sweep *= std::min(4.0, 1 + 1.5 * std::log2(bytes / cache));
-      // Where that factor reaches its cap (records beyond 4× the cache: about 2·10⁴ contacts
+      costs_.sweep = WorkCosts::body_sweep(P, record);  // memory-bound beyond the caches
+      // Where its cache factor reaches its cap (records beyond 4× the cache: about 2·10⁴ contacts
       // of spheres), the first NLGS stage costs as much as APGD's whole warm solve before its
       // rate is even measured (10⁴ spheres: ~50 ms a step), so the slices start at once, as
       // with `nlgs_sweeps: 0`; NLGS stays a member of the slices.
-      nlgs_first = bytes < 4 * cache;
+      nlgs_first = WorkCosts::record_bytes(P, record) < 4 * WorkCosts::cache_bytes;
     }
     start_ = r;
     best_ = r;
@@ -201,6 +196,7 @@ class Auto : public Solver {
       rep.iterations = total_;
       rep.error = natural_map_error(P, r, u);
       rep.converged = rep.error <= tol_;
+      rep.work = work_ + costs_.product + costs_.error;  // the answer's u and error, recomputed
       if (remember_) learn(m);
       return rep;
     };
@@ -292,6 +288,13 @@ class Auto : public Solver {
       best_by_ = current_;
     }
   }
+  /// The counted work of rule 0 when it answers from r: the start's error, and its product
+  /// unless r = 0 (u = q then).
+  static double start_work(const LocalProblem& P, const Eigen::VectorXd& r) {
+    const WorkCosts c = WorkCosts::of(P, false);
+    return c.error + ((r.array() == 0).all() ? 0.0 : c.product);
+  }
+
   /// The problem with W, assembled from the factor the first time a member needs it.
   const LocalProblem& with_w() {
     const LocalProblem& P = *P_;

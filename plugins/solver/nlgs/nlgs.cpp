@@ -12,6 +12,7 @@
 #include <numeric>
 #include <random>
 
+#include "../work.hpp"
 #include "nlgs_body_sweep.hpp"
 #include "nlgs_sweep.hpp"
 #include "sweep_order.hpp"
@@ -82,6 +83,9 @@ class Nlgs : public Solver {
     std::iota(order_.begin(), order_.end(), 0);
     if (ordering_ == "fixed_last") nlgs::fixed_last_order(P, order_);
     if (ordering_ == "reverse") std::reverse(order_.begin(), order_.end());
+    // Counted work (plugins/solver/work.hpp), as `auto` counts its NLGS sweeps and checks.
+    WorkCosts cost = WorkCosts::of(P, bodies);
+    if (bodies) cost.sweep = WorkCosts::body_sweep(P, static_cast<double>(body_sweeper_.record_size()));
     std::mt19937 rng(seed_);
     for (long it = 1; it <= max_it_; ++it) {
       if (ordering_ == "shuffle") std::shuffle(order_.begin(), order_.end(), rng);
@@ -90,7 +94,9 @@ class Nlgs : public Solver {
       else
         sweeper_.sweep(P, r, omega_, order_);
       rep.iterations = it;
+      rep.work += cost.sweep;
       if (it != 1 && it % check_every_ != 0 && it != max_it_) continue;
+      rep.work += cost.product + cost.error;
       if (bodies)
         body_sweeper_.velocities(r, u);
       else

@@ -10,6 +10,12 @@ struct SolverReport {
   long iterations = 0;
   double error = 0;      ///< DESIGN §1 error, recomputed from the returned r
   bool converged = false;
+  /// Counted work of the solve, in nanosecond-equivalents of the solvers' cost model of
+  /// their operations (products by W, error evaluations, sweeps, factorisations; sizes only,
+  /// so the same on every run and machine: docs/solvers.md "Counted work"). 0: not counted.
+  /// `auto` shares this work between its members; each member run alone reports the same
+  /// count, which is what the guarantee's test compares.
+  double work = 0;
 };
 
 class MOREAU_API Solver : public Plugin {

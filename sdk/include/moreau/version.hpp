@@ -4,7 +4,7 @@
 // standard library ABI), because plugin and kernel exchange std::string, std::function
 // and Eigen objects across the library boundary.
 
-#define MOREAU_ABI_VERSION 10
+#define MOREAU_ABI_VERSION 11
 #define MOREAU_SDK_VERSION "0.1.0"
 
 #define MOREAU_STRINGIFY_(x) #x
