@@ -89,7 +89,8 @@ int solve_with(Registry& reg, const fclib::Problem& problem, const FclibSolveArg
                               {"error", error},
                               {"seconds", median(times)},
                               {"converged", rep.converged && error <= filled.value("tolerance", 0.0)},
-                              {"repeats", args.repeat}};
+                              {"repeats", args.repeat},
+                              {"work", rep.work}};
   if (args.warm_start) line["warm_start"] = true;
   out << line.dump() << "\n";
   if (args.solution) {

@@ -149,6 +149,7 @@ TEST(Fclib, SolveRepeatReportsTheRepeatCount) {
   EXPECT_EQ(j["repeats"], 3);
   EXPECT_EQ(j["converged"], true);
   EXPECT_GE(j["seconds"].get<double>(), 0.0);
+  EXPECT_GT(j["work"].get<double>(), 0.0);  // nlgs counts its sweeps and checks
   // Only keys added to DESIGN §3.1's line: the first ones keep their order.
   EXPECT_EQ(r.out.rfind("{\"problem\":", 0), 0u) << r.out;
   EXPECT_EQ(run_moreau({"fclib", "solve", path, "--repeat", "0"}).code, 2);

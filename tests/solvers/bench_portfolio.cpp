@@ -8,8 +8,13 @@
 // would otherwise hold the benchmark for an hour); a solve that fails or times out is not
 // repeated. The child measures the solve alone (fresh solver object, problem read once in
 // the parent). Prints one CSV line per (problem, start, tolerance, solver):
-//   problem,warm,contacts,dim,tolerance,solver,iterations,error,seconds,converged,repeats
-// and problem features on `#` lines (docs/solvers.md "Corpus and guarantee" sums them up).
+//   problem,warm,contacts,dim,tolerance,solver,iterations,error,seconds,converged,repeats,work
+// (work: the solve's counted work, SolverReport::work; 0 for solvers that do not count it),
+// problem features on `#` lines, and at the end, on `#` lines, the guarantee measured both
+// ways in this one run: per problem and tolerance, auto's CPU time over the fastest of its
+// members (nlgs, apgd, newton, admm) and over the fastest of all solvers, next to auto's
+// counted work over the least work of its members; then how well counted work predicts CPU
+// time (ns of CPU per counted unit, per solver). docs/solvers.md "Corpus and guarantee".
 //
 //   moreau_bench_portfolio [--tolerances 1e-4,1e-8] [--repeat 3] [--timeout 10]
 //                          [--solvers nlgs,psor,apgd,admm,newton,prox,auto] FILE.hdf5...
@@ -48,7 +53,7 @@ long max_iterations(const std::string& s) { return s == "newton" ? 1000 : 100000
 
 struct Outcome {
   long iterations = 0;
-  double error = NAN, seconds = NAN;
+  double error = NAN, seconds = NAN, work = 0;
   bool converged = false, finished = false;  ///< finished: within the time limit
 };
 
@@ -84,12 +89,12 @@ Outcome solve_forked(const moreau::LocalProblem& P, const Eigen::VectorXd& r0, c
       secs += thread_seconds() - t0;
       ++count;
     } while (secs < min_time && count < 100000);
-    double out[4] = {static_cast<double>(rep.iterations), rep.error, secs / count, rep.converged ? 1.0 : 0.0};
+    double out[5] = {static_cast<double>(rep.iterations), rep.error, secs / count, rep.converged ? 1.0 : 0.0, rep.work};
     if (write(fd[1], out, sizeof out) != sizeof out) _exit(3);
     _exit(0);
   }
   close(fd[1]);
-  double in[4];
+  double in[5];
   Outcome o;
   const ssize_t got = read(fd[0], in, sizeof in);
   close(fd[0]);
@@ -100,6 +105,7 @@ Outcome solve_forked(const moreau::LocalProblem& P, const Eigen::VectorXd& r0, c
     o.error = in[1];
     o.seconds = in[2];
     o.converged = in[3] > 0;
+    o.work = in[4];
     o.finished = true;
   }
   return o;
@@ -116,6 +122,77 @@ std::vector<std::string> split(const std::string& s) {
 std::string stem(const std::string& path) {
   std::string f = path.substr(path.find_last_of('/') + 1);
   return f.substr(0, f.rfind('.'));
+}
+
+struct Row {
+  std::string problem;
+  double tol;
+  std::string solver;
+  bool converged;
+  double seconds, work;
+};
+
+bool member(const std::string& s) { return s == "nlgs" || s == "apgd" || s == "newton" || s == "admm"; }
+
+double median(std::vector<double> v) {
+  if (v.empty()) return NAN;
+  std::sort(v.begin(), v.end());
+  return v[v.size() / 2];
+}
+
+/// The guarantee both ways (CPU time and counted work) and the cost model's fit, from one run.
+void summary(const std::vector<Row>& rows) {
+  std::printf("# guarantee: auto over the fastest member (CPU) and over the least member work (counted), one run\n");
+  std::printf("# %-44s %6s  %-7s %10s %6s  %-7s %10s %6s  %-7s %10s %6s\n", "problem", "tol", "members", "CPU s", "auto/",
+              "all", "CPU s", "auto/", "work", "units", "auto/");
+  std::map<double, std::vector<double>> cpu, all, work;
+  std::map<std::string, std::vector<double>> ns;  // ns of CPU per counted unit, per solver
+  for (std::size_t i = 0; i < rows.size();) {
+    std::size_t j = i;
+    while (j < rows.size() && rows[j].problem == rows[i].problem && rows[j].tol == rows[i].tol) ++j;
+    const Row* fast = nullptr;
+    const Row* fast_all = nullptr;
+    const Row* least = nullptr;
+    const Row* a = nullptr;
+    for (std::size_t k = i; k < j; ++k) {
+      const Row& r = rows[k];
+      if (r.converged && r.work > 0 && r.seconds > 0) ns[r.solver].push_back(1e9 * r.seconds / r.work);
+      if (r.solver == "auto") {
+        a = &r;
+        continue;
+      }
+      if (!r.converged) continue;
+      if (!fast_all || r.seconds < fast_all->seconds) fast_all = &r;
+      if (!member(r.solver)) continue;
+      if (!fast || r.seconds < fast->seconds) fast = &r;
+      if (!least || r.work < least->work) least = &r;
+    }
+    if (a && fast) {
+      const double rc = a->converged ? a->seconds / fast->seconds : INFINITY;
+      const double ra = a->converged ? a->seconds / fast_all->seconds : INFINITY;
+      const double rw = a->converged && least->work > 0 ? a->work / least->work : INFINITY;
+      cpu[rows[i].tol].push_back(rc);
+      all[rows[i].tol].push_back(ra);
+      work[rows[i].tol].push_back(rw);
+      std::printf("# %-44s %6g  %-7s %10.3g %6.2f  %-7s %10.3g %6.2f  %-7s %10.3g %6.2f\n", rows[i].problem.c_str(), rows[i].tol,
+                  fast->solver.c_str(), fast->seconds, rc, fast_all->solver.c_str(), fast_all->seconds, ra, least->solver.c_str(),
+                  least->work, rw);
+    }
+    i = j;
+  }
+  for (const auto& [tol, v] : cpu) {
+    const auto& w = work[tol];
+    const auto& va = all[tol];
+    auto within = [](const std::vector<double>& x, double k) { return std::count_if(x.begin(), x.end(), [k](double y) { return y <= k; }); };
+    std::printf("# tol %g: %zu problems solved by some member; auto / fastest member CPU: median %.2f worst %.2f, within 1.5x %ld;"
+                " / fastest of all CPU: median %.2f worst %.2f; auto / least member work: median %.2f worst %.2f, within 1.5x %ld\n",
+                tol, v.size(), median(v), *std::max_element(v.begin(), v.end()), within(v, 1.5), median(va),
+                *std::max_element(va.begin(), va.end()), median(w), *std::max_element(w.begin(), w.end()), within(w, 1.5));
+  }
+  std::printf("# CPU ns per counted unit (converged solves; 1 = the model exactly): solver median [min, max]\n");
+  for (const auto& [s, v] : ns)
+    std::printf("#   %-8s %.2f [%.2f, %.2f] over %zu\n", s.c_str(), median(v), *std::min_element(v.begin(), v.end()),
+                *std::max_element(v.begin(), v.end()), v.size());
 }
 
 }  // namespace
@@ -148,7 +225,8 @@ int main(int argc, char** argv) {
       files.push_back(a);
     }
   }
-  std::printf("problem,warm,contacts,dim,tolerance,solver,iterations,error,seconds,converged,repeats\n");
+  std::printf("problem,warm,contacts,dim,tolerance,solver,iterations,error,seconds,converged,repeats,work\n");
+  std::vector<Row> rows;
   for (const auto& file : files) {
     const moreau::fclib::Problem prob = moreau::fclib::read(file);
     const moreau::LocalProblem& P = prob.local;
@@ -187,13 +265,15 @@ int main(int argc, char** argv) {
           std::sort(t.begin(), t.end());
           const Outcome& last = rs.back();
           const double med = t.empty() ? NAN : t[t.size() / 2];
-          std::printf("%s%s,%d,%ld,%d,%g,%s,%ld,%.6e,%.6e,%d,%zu\n", stem(file).c_str(), warm ? "+warm" : "", warm ? 1 : 0,
+          std::printf("%s%s,%d,%ld,%d,%g,%s,%ld,%.6e,%.6e,%d,%zu,%.6e\n", stem(file).c_str(), warm ? "+warm" : "", warm ? 1 : 0,
                       static_cast<long>(P.contacts()), P.dim, tol, s.c_str(), last.iterations, last.error,
-                      last.finished ? med : timeout, last.converged ? 1 : 0, t.size());
+                      last.finished ? med : timeout, last.converged ? 1 : 0, t.size(), last.work);
+          rows.push_back({stem(file) + (warm ? "+warm" : ""), tol, s, last.finished && last.converged, med, last.work});
           std::fflush(stdout);
         }
       }
     }
   }
+  summary(rows);
   return 0;
 }
