@@ -146,6 +146,7 @@ void summary(const std::vector<Row>& rows) {
   std::printf("# %-44s %6s  %-7s %10s %6s  %-7s %10s %6s  %-7s %10s %6s\n", "problem", "tol", "members", "CPU s", "auto/",
               "all", "CPU s", "auto/", "work", "units", "auto/");
   std::map<double, std::vector<double>> cpu, all, work;
+  std::vector<double> agree;  // auto's CPU-time ratio over its counted-work ratio, per problem
   std::map<std::string, std::vector<double>> ns;  // ns of CPU per counted unit, per solver
   for (std::size_t i = 0; i < rows.size();) {
     std::size_t j = i;
@@ -171,6 +172,7 @@ void summary(const std::vector<Row>& rows) {
       const double rc = a->converged ? a->seconds / fast->seconds : INFINITY;
       const double ra = a->converged ? a->seconds / fast_all->seconds : INFINITY;
       const double rw = a->converged && least->work > 0 ? a->work / least->work : INFINITY;
+      if (std::isfinite(rc) && std::isfinite(rw)) agree.push_back(rc / rw);
       cpu[rows[i].tol].push_back(rc);
       all[rows[i].tol].push_back(ra);
       work[rows[i].tol].push_back(rw);
@@ -189,6 +191,10 @@ void summary(const std::vector<Row>& rows) {
                 tol, v.size(), median(v), *std::max_element(v.begin(), v.end()), within(v, 1.5), median(va),
                 *std::max_element(va.begin(), va.end()), median(w), *std::max_element(w.begin(), w.end()), within(w, 1.5));
   }
+  if (!agree.empty())
+    std::printf("# auto's CPU-time ratio / its counted-work ratio over %zu problem-tolerance pairs: median %.2f [%.2f, %.2f]\n",
+                agree.size(), median(agree), *std::min_element(agree.begin(), agree.end()),
+                *std::max_element(agree.begin(), agree.end()));
   std::printf("# CPU ns per counted unit (converged solves; 1 = the model exactly): solver median [min, max]\n");
   for (const auto& [s, v] : ns)
     std::printf("#   %-8s %.2f [%.2f, %.2f] over %zu\n", s.c_str(), median(v), *std::min_element(v.begin(), v.end()),

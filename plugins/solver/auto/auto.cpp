@@ -16,12 +16,13 @@
 //    within twice the work spent so far (or another member's remembered work). Another
 //    incumbent gets three times its remembered work.
 // 2. Otherwise the members take turns in slices that double: the member whose last
-//    measured rate finishes soonest gets the work spent so far; while it would not finish
+//    measured rate finishes soonest (the least work left from where it would go on) gets
+//    the work spent so far; while it would not finish
 //    within that, an untried member (cheapest iteration first: APGD, then Newton's own run,
 //    Newton from the best iterate, ADMM; Newton's 4-step probe once the work spent reaches
 //    its cost (ski rental), or sooner when the others' rates say they need more than it),
 //    or one that has had under a fifth of the work, gets a quarter of it to measure its
-//    rate. NLGS, APGD and Newton from the best start from the best iterate; Newton's own
+//    rate (APGD's first probe from r = 0: all of it). NLGS, APGD and Newton from the best start from the best iterate; Newton's own
 //    run and ADMM continue their own runs from the warm start as each would alone (Newton
 //    with its line search's memory), since Newton from NLGS's iterate can crawl.
 // 3. The answer is the best iterate of all; the solve ends at the tolerance, when every
@@ -169,6 +170,7 @@ class Auto : public Solver {
       nlgs_first = WorkCosts::record_bytes(P, record) < 4 * WorkCosts::cache_bytes;
     }
     start_ = r;
+    cold_ = (r.array() == 0).all();
     best_ = r;
     best_err_ = start_err;  // ∞ when not evaluated (r = 0 with approaching contacts)
     best_by_ = -1;
@@ -547,13 +549,14 @@ class Auto : public Solver {
 
   /// The share of the work spent so far that a slice of `who` gets: all of it for the member
   /// picked for its rate; a quarter for a probe (a member picked to measure its rate), but
-  /// all of it for APGD's first: an accelerated method's error is not monotone and its rate
-  /// shows only after a few tens of steps (box tower, cold, 1e-4: a quarter was 13 steps,
-  /// 0.387 → 0.363, where APGD alone converges in 126; auto then probed Newton for 3× APGD's
-  /// whole work).
+  /// all of it for APGD's first from r = 0: an accelerated method's error is not monotone
+  /// and its rate shows only after a few tens of steps (box tower, cold, 1e-4: a quarter was
+  /// 13 steps, 0.387 → 0.363, where APGD alone converges in 126; auto then probed Newton for
+  /// 3× APGD's whole work). Not from a warm start: there NLGS usually finishes, and the
+  /// larger probe cost brick_wall_2d 17 % more work over 300 steps.
   double probe_share(const std::array<MemberState, member_count>& m, int who) const {
     if (who != exploring_) return 1.0;
-    return who == apgd_member && m[who].slices == 0 ? 1.0 : 0.25;
+    return who == apgd_member && m[who].slices == 0 && cold_ ? 1.0 : 0.25;
   }
 
   /// The work a member still needs at its last rate, from where it would go on: the best
@@ -607,6 +610,7 @@ class Auto : public Solver {
   bool bodies_ = false;
   WorkCosts costs_;
   Eigen::VectorXd start_, best_;
+  bool cold_ = false;     ///< the solve starts from r = 0
   double best_err_ = 0;
   long total_ = 0;
   double work_ = 0;       ///< work of this solve (plugins/solver/work.hpp)
