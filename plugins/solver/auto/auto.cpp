@@ -17,13 +17,13 @@
 //    incumbent gets three times its remembered work.
 // 2. Otherwise the members take turns in slices that double: the member whose last
 //    measured rate finishes soonest (the least work left from where it would go on) gets
-//    the work spent so far; while it would not finish
-//    within that, an untried member (cheapest iteration first: APGD, then Newton's own run,
-//    Newton from the best iterate, ADMM; Newton's 4-step probe once the work spent reaches
-//    its cost (ski rental), or sooner when the others' rates say they need more than it),
-//    or one that has had under a fifth of the work, gets a quarter of it to measure its
-//    rate (APGD's first probe from r = 0: all of it). NLGS, APGD and Newton from the best start from the best iterate; Newton's own
-//    run and ADMM continue their own runs from the warm start as each would alone (Newton
+//    the work spent so far; while it would not finish within that, an untried member
+//    (cheapest iteration first: APGD, then Newton's own run, Newton from the best iterate,
+//    ADMM; Newton's 4-step probe once the work spent reaches its cost (ski rental), or
+//    sooner when the others' rates say they need more than it), or one that has had under
+//    a fifth of the work, gets a quarter of it to measure its rate (APGD's first probe
+//    from r = 0: all of it). NLGS, APGD and Newton from the best start from the best
+//    iterate; Newton's own run and ADMM continue their own runs from the warm start as each would alone (Newton
 //    with its line search's memory), since Newton from NLGS's iterate can crawl.
 // 3. The answer is the best iterate of all; the solve ends at the tolerance, when every
 //    member has used `max_iterations` of its own (Newton at most 200), or had three slices
