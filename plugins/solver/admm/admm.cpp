@@ -3,6 +3,7 @@
 // residual balancing on ρ. Stopping test: the DESIGN §1 error, recomputed from r.
 #include <moreau/solver.hpp>
 
+#include "../work.hpp"
 #include "admm_core.hpp"
 
 namespace {
@@ -36,14 +37,7 @@ class AdmmSolver : public Solver {
   }
 
   SolverReport solve(const LocalProblem& P, Eigen::VectorXd& r, Eigen::VectorXd& u) override {
-    // Counted as inside `auto` (plugins/solver/work.hpp), so that the guarantee's test can
-    // compare auto's work with this member's alone.
-    double work = 0;
-    o_.work = &work;
-    SolverReport rep = admm_.solve(P, o_, r, u);
-    o_.work = nullptr;
-    rep.work = work;
-    return rep;
+    return counted(o_, [&] { return admm_.solve(P, o_, r, u); });  // work counted as inside `auto`
   }
 
  private:

@@ -3,6 +3,7 @@
 // Stopping test: the DESIGN §1 error, recomputed from r.
 #include <moreau/solver.hpp>
 
+#include "../work.hpp"
 #include "apgd_core.hpp"
 
 namespace {
@@ -31,14 +32,7 @@ class ApgdSolver : public Solver {
   bool reads_matrix_with_factor() const override { return false; }
 
   SolverReport solve(const LocalProblem& P, Eigen::VectorXd& r, Eigen::VectorXd& u) override {
-    // Counted as inside `auto` (plugins/solver/work.hpp), so that the guarantee's test can
-    // compare auto's work with this member's alone.
-    double work = 0;
-    o_.work = &work;
-    SolverReport rep = apgd::solve(P, o_, r, u);
-    o_.work = nullptr;
-    rep.work = work;
-    return rep;
+    return counted(o_, [&] { return apgd::solve(P, o_, r, u); });  // work counted as inside `auto`
   }
 
  private:

@@ -4,6 +4,7 @@
 // DESIGN §1 error, recomputed from r.
 #include <moreau/solver.hpp>
 
+#include "../work.hpp"
 #include "newton_core.hpp"
 
 namespace {
@@ -37,14 +38,7 @@ class NewtonSolver : public Solver {
   }
 
   SolverReport solve(const LocalProblem& P, Eigen::VectorXd& r, Eigen::VectorXd& u) override {
-    // Counted as inside `auto` (plugins/solver/work.hpp), so that the guarantee's test can
-    // compare auto's work with this member's alone.
-    double work = 0;
-    o_.work = &work;
-    SolverReport rep = newton_.solve(P, o_, r, u);
-    o_.work = nullptr;
-    rep.work = work;
-    return rep;
+    return counted(o_, [&] { return newton_.solve(P, o_, r, u); });  // work counted as inside `auto`
   }
 
  private:
