@@ -21,10 +21,11 @@
 //    (cheapest iteration first: APGD, then Newton's own run, Newton from the best iterate,
 //    ADMM; Newton's 4-step probe once the work spent reaches its cost (ski rental), or
 //    sooner when the others' rates say they need more than it), or one that has had under
-//    a fifth of the work, gets a quarter of it to measure its rate (APGD's first probe
-//    from r = 0: all of it). NLGS, APGD and Newton from the best start from the best
-//    iterate; Newton's own run and ADMM continue their own runs from the warm start as each would alone (Newton
-//    with its line search's memory), since Newton from NLGS's iterate can crawl.
+//    a fifth of the work, gets a quarter of it to measure its rate (APGD's first probe on
+//    an FCLib problem from r = 0: all of it). NLGS, APGD and Newton from the best start
+//    from the best iterate; Newton's own run and ADMM continue their own runs from the warm
+//    start as each would alone (Newton with its line search's memory), since Newton from
+//    NLGS's iterate can crawl.
 // 3. The answer is the best iterate of all; the solve ends at the tolerance, when every
 //    member has used `max_iterations` of its own (Newton at most 200), or had three slices
 //    in a row that gained less than 1 %.
@@ -549,14 +550,17 @@ class Auto : public Solver {
 
   /// The share of the work spent so far that a slice of `who` gets: all of it for the member
   /// picked for its rate; a quarter for a probe (a member picked to measure its rate), but
-  /// all of it for APGD's first from r = 0: an accelerated method's error is not monotone
-  /// and its rate shows only after a few tens of steps (box tower, cold, 1e-4: a quarter was
-  /// 13 steps, 0.387 → 0.363, where APGD alone converges in 126; auto then probed Newton for
-  /// 3× APGD's whole work). Not from a warm start: there NLGS usually finishes, and the
-  /// larger probe cost brick_wall_2d 17 % more work over 300 steps.
+  /// all of it for APGD's first on a problem given with W (FCLib) from r = 0: an accelerated
+  /// method's error is not monotone and its rate shows only after a few tens of steps (box
+  /// tower, cold, 1e-4: a quarter was 13 steps, 0.387 → 0.363, where APGD alone converges in
+  /// 126; auto then probed Newton for 3× APGD's whole work). Not from a warm start: there
+  /// NLGS usually finishes, and the larger probe cost brick_wall_2d 17 % more work over 300
+  /// steps. Not in the time-stepper (W through the bodies): there only a run's first step
+  /// starts from r = 0, and changing its answer within the tolerance changed the work of the
+  /// next 1000 steps by chance (box_tower_3d −45 %, brick_wall_2d +19 %).
   double probe_share(const std::array<MemberState, member_count>& m, int who) const {
     if (who != exploring_) return 1.0;
-    return who == apgd_member && m[who].slices == 0 && cold_ ? 1.0 : 0.25;
+    return who == apgd_member && m[who].slices == 0 && cold_ && !bodies_ ? 1.0 : 0.25;
   }
 
   /// The work a member still needs at its last rate, from where it would go on: the best
