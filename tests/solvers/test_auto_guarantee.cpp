@@ -16,10 +16,11 @@ using namespace solver_cases;
 namespace {
 
 /// The k that auto achieves on this corpus (docs/solvers.md "Guarantee"). Measured, not
-/// chosen: the worst ratio is 3.50 (box tower, cold, 1e-4: APGD alone 4.98e5 units, auto
-/// 1.74e6); the 3 % above it allow for another compiler's rounding moving an iteration
-/// count. With 3.4, or with the rule before APGD's full first probe (6.05), this fails.
-constexpr double stated_k = 3.6;
+/// chosen: the worst ratio is 3.03 (spheres3d_64 warm at 1e-8: APGD alone 1.74e6 units,
+/// auto 5.26e6); the 2 % above it allow for another compiler's rounding moving an
+/// iteration count. With 3.0 this fails, as it does with the rule before this version
+/// (worst 6.05, box tower cold at 1e-4).
+constexpr double stated_k = 3.1;
 
 /// auto's members, each run alone with auto's caps (Newton: 200 steps, each a factorisation).
 constexpr const char* members[] = {"nlgs", "apgd", "newton", "admm"};
