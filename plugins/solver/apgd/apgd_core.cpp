@@ -4,6 +4,7 @@
 #include "scaled_factor.hpp"
 
 #include <cmath>
+#include <memory>
 #include <moreau/contact_error.hpp>
 #include <moreau/factor_matrix.hpp>
 #include <vector>
@@ -132,6 +133,50 @@ double extrapolate(Eigen::Index nc, const double* mu, double beta, const double*
 
 }  // namespace
 
+/// The products by W of one problem and what depends on W only: the scaling D (a scalar
+/// per contact, its mean diagonal of W) and the cost of a product. Packed once per
+/// problem, kept in State::products for later calls on the same problem.
+class Products {
+ public:
+  explicit Products(const LocalProblem& P) : problem(&P), W(P) {
+    const int d = P.dim;
+    const Eigen::Index nc = P.contacts(), n = d * nc;
+    const Eigen::VectorXd diag = W.diagonal();
+    double mean_diag = 0;
+    for (Eigen::Index i = 0; i < n; ++i) mean_diag += diag[i];
+    mean_diag /= static_cast<double>(n);
+    if (!(mean_diag > 0)) mean_diag = 1;
+    Dc.resize(nc);
+    for (Eigen::Index a = 0; a < nc; ++a) {
+      double t = 0;
+      for (int k = 0; k < d; ++k) t += diag[a * d + k];
+      t /= d;
+      if (!(t > 1e-12 * mean_diag)) t = mean_diag;
+      Dc[a] = t;
+    }
+    cost = WorkCosts::of(P, W.through_factor());
+    if (W.scaled()) cost.product = WorkCosts::scaled_factor_product(P);
+  }
+  bool of(const LocalProblem& P) const { return problem == &P && Dc.size() == P.contacts(); }
+
+  const LocalProblem* problem;
+  WProduct W;
+  Eigen::VectorXd Dc;  ///< D per contact (its d entries are equal)
+  WorkCosts cost;
+};
+
+bool velocities(const State& state, const LocalProblem& P, const Eigen::VectorXd& x, Eigen::VectorXd& u) {
+  if (!state.products || !state.products->of(P)) return false;
+  state.products->W.apply(x, u);
+  u += P.q;
+  return true;
+}
+
+State::State() = default;
+State::~State() = default;
+State::State(State&&) noexcept = default;
+State& State::operator=(State&&) noexcept = default;
+
 SolverReport solve(const LocalProblem& P, const Options& o, Eigen::VectorXd& r, Eigen::VectorXd& u) {
   const int d = P.dim;
   const Eigen::Index nc = P.contacts(), n = d * nc;
@@ -142,42 +187,41 @@ SolverReport solve(const LocalProblem& P, const Options& o, Eigen::VectorXd& r, 
     rep.converged = true;
     return rep;
   }
-  WProduct W(P);
-  const Eigen::VectorXd diag = W.diagonal();
-  Eigen::VectorXd D(n);
-  double mean_diag = 0;
-  for (Eigen::Index i = 0; i < n; ++i) mean_diag += diag[i];
-  mean_diag /= static_cast<double>(n);
-  if (!(mean_diag > 0)) mean_diag = 1;
-  for (Eigen::Index a = 0; a < nc; ++a) {
-    double t = 0;
-    for (int k = 0; k < d; ++k) t += diag[a * d + k];
-    t /= d;
-    if (!(t > 1e-12 * mean_diag)) t = mean_diag;
-    for (int k = 0; k < d; ++k) D[a * d + k] = t;
-  }
-  Eigen::VectorXd Dc(nc);  // D per contact (its d entries are equal)
-  for (Eigen::Index a = 0; a < nc; ++a) Dc[a] = D[a * d];
+  std::unique_ptr<Products> kept;
+  const bool packed = o.state && o.same_problem && o.state->products && o.state->products->of(P);
+  if (packed)
+    kept = std::move(o.state->products);
+  else
+    kept = std::make_unique<Products>(P);
+  WProduct& W = kept->W;
+  const Eigen::VectorXd& Dc = kept->Dc;
+  const WorkCosts& cost = kept->cost;
 
-  Eigen::VectorXd x(n), Wx(n), y(n), Wy(n), xn(n), Wxn(n), g(n), dl(n), Wd(n), best(n);
+  Eigen::VectorXd x(n), Wx(n), y(n), Wy(n), xn(n), Wxn(n), g(n), dl(n), Wd(n), best;
   double L = 1, theta = 1;
   WorkMeter meter(o.max_work, o.work);
-  WorkCosts cost = WorkCosts::of(P, W.through_factor());
-  if (W.scaled()) cost.product = WorkCosts::scaled_factor_product(P);
-  if (o.resume && o.state && o.state->x.size() == n) {
+  const bool resume = o.resume && o.state && o.state->x.size() == n;
+  double best_err = -1;
+  if (resume) {
     State& st = *o.state;
-    x = st.x, y = st.y, Wx = st.Wx, Wy = st.Wy, L = st.L, theta = st.theta;
+    x.swap(st.x), y.swap(st.y), Wx.swap(st.Wx), Wy.swap(st.Wy), L = st.L, theta = st.theta;
+    best_err = st.err;
   } else {
     project_all(P, r, x);
     W.apply(x, Wx);
     y = x;
     Wy = Wx;
   }
-  u = Wx + P.q;
-  double best_err = natural_map_error(P, x, u);
-  best = x;
-  // The start's error; packing the factor (H L per contact side) costs about a product.
-  meter.add((o.resume ? 0 : cost.product) + (W.scaled() ? cost.product : 0) + cost.error + 2 * cost.vector);
+  if (!(best_err >= 0)) {
+    u = Wx + P.q;
+    best_err = natural_map_error(P, x, u);
+    meter.add(cost.error);
+  }
+  // The best iterate is x itself until an iterate is worse than the one before: copied only
+  // then (not at every step).
+  bool best_is_x = true;
+  // The start's product; packing the factor (H L per contact side) costs about a product.
+  meter.add((resume ? 0 : cost.product) + (W.scaled() && !packed ? cost.product : 0) + 2 * cost.vector);
   const double denominator = error_denominator(P);
   const double* mu = P.mu.data();
   const double* q = P.q.data();
@@ -212,21 +256,38 @@ SolverReport solve(const LocalProblem& P, const Options& o, Eigen::VectorXd& r, 
     Wx.swap(Wxn);
     L *= o.shrink;
     const double e = std::sqrt(sum) / denominator;
-    if (!std::isfinite(e)) break;
+    if (!std::isfinite(e)) {
+      x.swap(xn);  // x stays the last finite iterate (kept in the state)
+      Wx.swap(Wxn);
+      break;
+    }
     if (e < best_err) {
       best_err = e;
-      best = x;
+      best_is_x = true;
+    } else if (best_is_x) {
+      best = xn;  // the iterate before, the best, is overwritten by the next step
+      best_is_x = false;
     }
     meter.add((1 + backtracks) * cost.product + cost.error + 8 * cost.vector);  // a product, one per backtrack
     if (meter.exhausted()) break;
   }
-  if (o.state) *o.state = State{x, y, Wx, Wy, L, theta};
-  r = best;
-  W.apply(r, u);
-  u += P.q;
-  meter.add(cost.product);
-  rep.error = natural_map_error(P, r, u);
+  r = best_is_x ? x : best;
+  if (o.recompute_error || !best_is_x) {
+    W.apply(r, u);
+    u += P.q;
+    meter.add(cost.product);
+    rep.error = natural_map_error(P, r, u);
+  } else {
+    u = Wx + P.q;  // as the iteration measured it
+    rep.error = best_err;
+  }
   rep.converged = rep.error <= o.tolerance;
+  if (o.state) {
+    State& st = *o.state;
+    const double x_err = best_is_x ? best_err : -1;
+    st.x.swap(x), st.y.swap(y), st.Wx.swap(Wx), st.Wy.swap(Wy), st.L = L, st.theta = theta, st.err = x_err;
+    st.products = std::move(kept);
+  }
   return rep;
 }
 

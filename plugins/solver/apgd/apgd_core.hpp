@@ -10,15 +10,26 @@
 // step plus one per backtrack. Stopping test: the DESIGN §1 error at x⁺; the best finite
 // iterate is returned. Without W (0 × 0) but with its factor, the products go through the
 // factor: W x = H (M⁻¹ (Hᵀ x)).
+#include <memory>
 #include <moreau/contact_problem.hpp>
 #include <moreau/solver.hpp>
 
 namespace moreau::apgd {
 
+class Products;  // the products by W of one problem, packed (apgd_core.cpp)
+
 /// Where a run stopped, so that a later call can continue it (`auto` runs APGD in slices).
 struct State {
+  State();
+  ~State();
+  State(State&&) noexcept;
+  State& operator=(State&&) noexcept;
   Eigen::VectorXd x, y, Wx, Wy;
   double L = 1, theta = 1;
+  double err = -1;  ///< the error at x (−1: not known)
+  /// The last call's packed products by W (the factor folded with the inverse masses, the
+  /// scaling D), kept for a later call on the same problem (Options::same_problem).
+  std::unique_ptr<Products> products;
 };
 
 struct Options {
@@ -34,8 +45,21 @@ struct Options {
   /// set and it holds a run of this problem's size (the start r is then ignored).
   State* state = nullptr;
   bool resume = false;
+  /// The state's packed products are this problem's (a later slice of the same solve in
+  /// `auto`): used as they are instead of packed again (at 10⁴ spheres the packing and
+  /// the start's product cost about three APGD iterations a slice).
+  bool same_problem = false;
+  /// The error returned is recomputed from r with a fresh product (true), or, when r is
+  /// the last iterate, the one the iteration measured (u from the updated W x, equal to
+  /// rounding): for a caller that recomputes its answer's error itself (`auto`).
+  bool recompute_error = true;
 };
 
 SolverReport solve(const LocalProblem& P, const Options& o, Eigen::VectorXd& r, Eigen::VectorXd& u);
+
+/// u = W x + q through the packed products the state keeps, when the caller knows they are
+/// P's (a call on P with this state since P was given); false, u untouched, when the state
+/// has none for P.
+bool velocities(const State& state, const LocalProblem& P, const Eigen::VectorXd& x, Eigen::VectorXd& u);
 
 }  // namespace moreau::apgd

@@ -141,12 +141,12 @@ class Auto : public Solver {
         u = P.q;
         start_err = natural_map_error(P, r, u);
       }
-      if (bodies_ && !(start_err <= tol_)) body_sweeper_.prepare(P, r);
+      if (bodies_ && !(start_err <= tol_)) records(P, r);
     } else if (bodies_) {
       // In a time step NLGS takes its first sweep as `nlgs` does: a warm start accepted at
       // every step of a resting stack lets its residual (up to the tolerance) add up into
       // a slow creep of the bodies.
-      body_sweeper_.prepare(P, r);  // the records, once per solve
+      records(P, r);  // the records, once per solve (or when NLGS first runs)
     } else {
       velocities(r, u);
       start_err = natural_map_error(P, r, u);
@@ -168,7 +168,7 @@ class Auto : public Solver {
       // of spheres), the first NLGS stage costs as much as APGD's whole warm solve before its
       // rate is even measured (10⁴ spheres: ~50 ms a step), so the slices start at once, as
       // with `nlgs_sweeps: 0`; NLGS stays a member of the slices.
-      nlgs_first = WorkCosts::record_bytes(P, record) < 4 * WorkCosts::cache_bytes;
+      nlgs_first = records_packed_;  // records() packs them exactly then (within 4× the cache)
     }
     start_ = r;
     cold_ = (r.array() == 0).all();
@@ -255,9 +255,7 @@ class Auto : public Solver {
       slice(m, first, 3 * memory_[first].cost * nc_, false);
       if (best_err_ <= tol_) return finish();
     } else if (!std::isfinite(best_err_)) {  // nlgs_sweeps = 0: the start's error, unless rule 0 had it
-      velocities(r, u);
-      keep(r, natural_map_error(P, r, u));
-      work_ += costs_.product + costs_.error;
+      start_error(r, u);
     }
     if (!std::isfinite(best_err_)) return finish();
 
@@ -277,12 +275,49 @@ class Auto : public Solver {
     return !s.available || s.iterations >= member_max(k) || (s.slices >= 3 && s.fruitless >= 3);
   }
 
-  /// u = W x + q, through the bodies when only the factor was given.
+  /// u = W x + q, through the bodies when only the factor was given: by NLGS's records
+  /// when packed, else by APGD's packed product when APGD ran in this solve, else through
+  /// the factor.
   void velocities(const Eigen::VectorXd& x, Eigen::VectorXd& v) {
-    if (bodies_)
-      body_sweeper_.velocities(x, v);
-    else
+    if (!bodies_) {
       v = P_->W * x + P_->q;
+    } else if (records_packed_) {
+      body_sweeper_.velocities(x, v);
+    } else if (!(apgd_slices_ > 0 && apgd::velocities(apgd_state_, *P_, x, v))) {
+      multiply_w(P_->dim, P_->factor, x, v, impulse_, dv_);
+      v += P_->q;
+    }
+  }
+  /// NLGS's body records: their layout (record_size()) always, the records themselves now
+  /// only while they fit in 4× the cache. Beyond that NLGS does not run first (see solve())
+  /// and they are packed when it first runs, if ever: at 10⁴ spheres the packing cost about
+  /// 3 ms a step (5 % of APGD's warm solve), for nothing.
+  void records(const LocalProblem& P, const Eigen::VectorXd& r) {
+    body_sweeper_.layout(P);
+    records_packed_ = WorkCosts::record_bytes(P, static_cast<double>(body_sweeper_.record_size())) < 4 * WorkCosts::cache_bytes;
+    if (records_packed_) body_sweeper_.pack(P, r);
+  }
+  /// The start's error before the slices (nlgs_sweeps = 0, or records beyond the caches).
+  /// Without NLGS's records APGD measures it (it packs its product for its first slice
+  /// anyway; that slice then continues from it): one product instead of two.
+  void start_error(Eigen::VectorXd& r, Eigen::VectorXd& u) {
+    if (bodies_ && !records_packed_) {
+      apgd::Options o;
+      o.tolerance = tol_;
+      o.max_iterations = 0;  // the start only
+      o.work = &work_;
+      o.state = &apgd_state_;
+      o.recompute_error = false;
+      Eigen::VectorXd x = r;
+      current_ = apgd_member;
+      const SolverReport s = apgd::solve(*P_, o, x, u);
+      ++apgd_slices_;
+      keep(x, s.error);
+      return;
+    }
+    velocities(r, u);
+    keep(r, natural_map_error(*P_, r, u));
+    work_ += costs_.product + costs_.error;
   }
   void keep(const Eigen::VectorXd& x, double e) {
     if (e < best_err_ && x.allFinite()) {
@@ -399,7 +434,12 @@ class Auto : public Solver {
   /// rate (ln of the error per unit of work; 0 when unknown); `reached`: its lowest error.
   double run_nlgs(Eigen::VectorXd& x, long max_sweeps, double units, bool first, double* reached) {
     const LocalProblem& P = *P_;
-    if (bodies_ && !first) body_sweeper_.reset_velocities(x);  // the first stage starts where prepare() set Δv
+    if (bodies_ && !records_packed_) {  // packed when NLGS first runs (records beyond the caches)
+      body_sweeper_.pack(P, x);
+      records_packed_ = true;
+    } else if (bodies_ && !first) {
+      body_sweeper_.reset_velocities(x);  // the first stage starts where records() set Δv
+    }
     const double w0 = work_;
     Eigen::VectorXd v;
     hist_.clear();
@@ -486,6 +526,8 @@ class Auto : public Solver {
         apgd::Options o;
         limits(o);
         o.state = &apgd_state_;
+        o.same_problem = apgd_slices_ > 0;  // its packed products are kept over the slices of a solve
+        o.recompute_error = false;          // finish() recomputes the answer's error
         o.resume = apgd_slices_++ > 0 && best_by_ == apgd_member;  // its run goes on while it holds the best iterate
         s = apgd::solve(*P_, o, x, v);  // through the factor when W was not given
         break;
@@ -622,6 +664,8 @@ class Auto : public Solver {
   const LocalProblem* P_ = nullptr;
   double nc_ = 0;
   bool bodies_ = false;
+  bool records_packed_ = false;  ///< NLGS's body records are packed for this solve (records())
+  std::vector<double> impulse_, dv_;  ///< scratch of products through the factor
   WorkCosts costs_;
   Eigen::VectorXd start_, best_;
   bool cold_ = false;     ///< the solve starts from r = 0

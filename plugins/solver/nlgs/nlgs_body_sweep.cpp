@@ -129,6 +129,11 @@ bool isotropic(const double* Mi, int d, int k, double& mt, double& mr) {
 }  // namespace
 
 void BodySweeper::prepare(const LocalProblem& P, const Eigen::VectorXd& r) {
+  layout(P);
+  pack(P, r);
+}
+
+void BodySweeper::layout(const LocalProblem& P) {
   const BodyFactor& f = P.factor;
   if (!f.present()) throw InputError("/solver/exchange", "\"bodies\" needs the factored form W = H M⁻¹ Hᵀ, which only the time-stepper gives (not an FCLib file); use \"auto\" or \"w\"");
   d_ = P.dim;
@@ -138,7 +143,6 @@ void BodySweeper::prepare(const LocalProblem& P, const Eigen::VectorXd& r) {
   if (!((d == 2 && k == 3) || (d == 3 && k == 6)))
     throw InputError("/solver/exchange", "\"bodies\" supports rigid bodies (2D: 3 unknowns per body, 3D: 6), not dim " +
                 std::to_string(d) + " with " + std::to_string(k));
-  const std::size_t nc = static_cast<std::size_t>(P.contacts());
   const bool frictionless = (P.mu.array() == 0.0).all();
   pd_ = frictionless ? 1 : d;
   pk_ = frictionless && normals_through_centres(P) ? d : k;
@@ -152,6 +156,12 @@ void BodySweeper::prepare(const LocalProblem& P, const Eigen::VectorXd& r) {
   off_H_ = pd * pd + pd + 1 + (iso_ ? 4 : 0);
   off_G_ = off_H_ + 2 * pd * pk;
   stride_ = static_cast<std::size_t>(off_G_ + (iso_ ? 0 : 2 * pd * pk));
+}
+
+void BodySweeper::pack(const LocalProblem& P, const Eigen::VectorXd& r) {
+  const BodyFactor& f = P.factor;
+  const int d = d_, k = k_, pd = pd_, pk = pk_;
+  const std::size_t nc = static_cast<std::size_t>(P.contacts());
   rec_.assign(nc * stride_, 0.0);
   body_.assign(2 * nc, -1);
   // Moving bodies numbered by first use, so Δv blocks sit in the order contacts reach them.

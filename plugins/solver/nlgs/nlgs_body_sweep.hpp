@@ -26,6 +26,11 @@ class BodySweeper {
  public:
   /// Packs the records from P.factor (which must be present) and sets Δv from r.
   void prepare(const LocalProblem& P, const Eigen::VectorXd& r);
+  /// Only the records' layout (record_size()), not the records: prepare() = layout() then
+  /// pack(), for a caller that decides from the size whether to sweep at all (`auto`).
+  void layout(const LocalProblem& P);
+  /// Packs the records of the problem given to layout() and sets Δv from r.
+  void pack(const LocalProblem& P, const Eigen::VectorXd& r);
   /// r_α ← ω local(α) + (1 − ω) r_α for α in `order`, updating Δv as it goes.
   void sweep(Eigen::VectorXd& r, double omega, const std::vector<Eigen::Index>& order);
   /// The one-contact solver used by the sweeps (exact by default).
