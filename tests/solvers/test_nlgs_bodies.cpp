@@ -218,7 +218,7 @@ TEST(AutoFactored, WithoutWSameAnswerAsWithW) {
 
 std::unique_ptr<moreau::Solver> apgd_solver() {
   return moreau_test::create<moreau::Solver>(
-      "apgd", {{"tolerance", 1e-10}, {"max_iterations", 100000}, {"shrink", 0.9}, {"restart", true}}, moreau::BuildContext{});
+      "apgd", {{"tolerance", 1e-10}, {"max_iterations", 100000}, {"shrink", 0.9}, {"restart", true}, {"check_every", 1}}, moreau::BuildContext{});
 }
 
 /// APGD on `full` with W and on the same problem given by its factor only (as the
@@ -373,6 +373,30 @@ TEST(ApgdFactored, SlicesWithKeptProductsAreOneRun) {
     ASSERT_TRUE(moreau::apgd::velocities(state, P, r, v));
     EXPECT_LT((v - u1).norm(), 1e-12 * (1 + u1.norm()));
   }
+}
+
+TEST(ApgdFactored, ErrorEveryFewStepsStopsWithinThemAtAMeasuredIterate) {
+  // check_every = k: the iterates are the same, only measured at the first step and every
+  // k-th, so the run stops at most k − 1 steps after the run measured at every step, at a
+  // measured iterate whose error (recomputed from r) is within the tolerance.
+  for (int d : {2, 3})
+    for (long k : {2L, 3L, 5L}) {
+      auto P = varied_problem(d, 37, false);
+      P.W.resize(0, 0);
+      moreau::apgd::Options o;
+      o.tolerance = 1e-9;
+      o.max_iterations = 100000;
+      Eigen::VectorXd r1, u1, rk, uk;
+      const auto rep1 = moreau::apgd::solve(P, o, r1, u1);
+      o.check_every = k;
+      const auto repk = moreau::apgd::solve(P, o, rk, uk);
+      ASSERT_TRUE(rep1.converged);
+      ASSERT_TRUE(repk.converged) << "dim " << d << ", k " << k << ": " << repk.error;
+      EXPECT_GE(repk.iterations, rep1.iterations);
+      EXPECT_LT(repk.iterations, rep1.iterations + k);
+      EXPECT_TRUE(repk.iterations == 1 || repk.iterations % k == 0) << repk.iterations;
+      EXPECT_NEAR(repk.error, moreau::natural_map_error(varied_problem(d, 37, false), rk), 1e-12);
+    }
 }
 
 }  // namespace

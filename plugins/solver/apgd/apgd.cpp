@@ -17,6 +17,7 @@ class ApgdSolver : public Solver {
     s.integer("max_iterations", "maximum gradient steps").min(1).fallback(10000);
     s.number("shrink", "the Lipschitz estimate is multiplied by this after each step (1: never shrinks)").gt(0).max(1).fallback(0.9);
     s.boolean("restart", "restart the extrapolation when a step goes uphill").fallback(true);
+    s.integer("check_every", "steps between two evaluations of the error (the first step is always measured)").min(1).fallback(1);
     return s;
   }
   static constexpr const char* doc = "accelerated projected gradient with adaptive step and restart (De Saxce shift)";
@@ -26,6 +27,7 @@ class ApgdSolver : public Solver {
     o_.max_iterations = p.integer("max_iterations");
     o_.shrink = p.number("shrink");
     o_.restart = p.boolean("restart");
+    o_.check_every = p.integer("check_every");
   }
 
   /// From the time-stepper it multiplies through the factor W = H M⁻¹ Hᵀ: W is not built.

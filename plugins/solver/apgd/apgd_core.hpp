@@ -37,6 +37,11 @@ struct Options {
   long max_iterations = 10000;
   double shrink = 0.9;   ///< L ← shrink·L after each accepted step (1: never shrinks)
   bool restart = true;   ///< gradient restart of the extrapolation
+  /// The error at x⁺ is evaluated at the first step and every `check_every` steps (1: at
+  /// every step); an unmeasured x⁺ is not a candidate for the best iterate, and the run
+  /// stops at a measured one. The error is a cone projection per contact, about a sixth
+  /// of a step: at 10⁴ spheres, 3 gave 1.14× per step for 2 % more steps.
+  long check_every = 1;
   /// Work budget in products by W (0: none), checked after each iteration; the work done
   /// is added to *work when given (plugins/solver/work.hpp). Used by `auto`.
   double max_work = 0;
