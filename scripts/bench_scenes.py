@@ -9,12 +9,17 @@ the solve stage's seconds per step (from `moreau run`'s stage table), the steps 
 missed the tolerance (from the end-of-run summary), and auto over the best member.
 
     python3 scripts/bench_scenes.py [--moreau build/bin/moreau] [--steps 1000] [--repeat 3]
-        [--solvers auto nlgs newton admm apgd] [--only NAME ...] [--tolerance X] [--cpu] [--out build/bench_scenes]
+        [--solvers auto nlgs newton admm apgd] [--only NAME ...] [--tolerance X] [--cpu | --stage-cpu]
+        [--out build/bench_scenes]
+
+A solver may carry parameters: `auto/remember=false` (JSON values after `=`, comma-separated).
 
 With --cpu the time is the run's CPU time (user + system, the whole process, every stage)
 per step instead of the solve stage's wall time: on a loaded shared machine wall times
 move by tens of per cent between runs, CPU times much less (stages other than the solve
-are included and add the same to every solver, so ratios lean towards 1).
+are included and add the same to every solver, so ratios lean towards 1). With --stage-cpu
+it is the solve stage's CPU time (MOREAU_STAGE_CLOCK=cpu): the solver's own cost, without
+the process start that dominates scenes of few, light steps.
 """
 import argparse
 import json
@@ -49,10 +54,15 @@ def scenes(steps):
     return out
 
 
-def solver_block(scene, name, tolerance=None):
+def solver_block(scene, spec, tolerance=None):
+    """`spec`: a solver name, optionally with parameters: auto/remember=true,nlgs_sweeps=0."""
+    name, _, extra = spec.partition("/")
     sv = dict(scene.get("solver") or {})
     tol = tolerance or sv.get("tolerance", DEFAULT_TOLERANCE)
     block = {"type": name, "tolerance": tol}
+    for kv in filter(None, extra.split(",")):
+        k, _, v = kv.partition("=")
+        block[k] = json.loads(v)
     if name == "nlgs" and sv.get("type") == "nlgs" and "max_iterations" in sv:
         block["max_iterations"] = sv["max_iterations"]
     return block, tol
@@ -63,7 +73,7 @@ def child_cpu():
     return r.ru_utime + r.ru_stime
 
 
-def run(moreau, scene, name, steps, tmp, tolerance=None, cpu=False):
+def run(moreau, scene, name, steps, tmp, tolerance=None, cpu=False, stage_cpu=False):
     s = json.loads(json.dumps(scene))
     s["solver"], tol = solver_block(scene, name, tolerance)
     path = os.path.join(tmp, "scene.json")
@@ -72,7 +82,7 @@ def run(moreau, scene, name, steps, tmp, tolerance=None, cpu=False):
     n = min(steps, total)
     c0 = child_cpu()
     p = subprocess.run([moreau, "run", path, "--out", os.path.join(tmp, "out.h5"), "--steps", str(n)],
-                       capture_output=True, text=True)
+                       capture_output=True, text=True, env=dict(os.environ, MOREAU_STAGE_CLOCK="cpu") if stage_cpu else None)
     used = child_cpu() - c0
     if p.returncode != 0:
         return {"error": p.stderr.strip().splitlines()[-1] if p.stderr.strip() else f"exit {p.returncode}"}
@@ -93,6 +103,8 @@ def main():
     ap.add_argument("--only", nargs="+", metavar="NAME")
     ap.add_argument("--tolerance", type=float, help="one tolerance for every scene (default: each scene's own)")
     ap.add_argument("--cpu", action="store_true", help="the run's CPU time per step instead of the solve stage's wall time")
+    ap.add_argument("--stage-cpu", action="store_true",
+                    help="the solve stage's CPU time per step (MOREAU_STAGE_CLOCK=cpu): no process start, no other stage")
     ap.add_argument("--out", default=os.path.join(REPO, "build", "bench_scenes"))
     a = ap.parse_args()
     moreau = os.path.abspath(a.moreau)
@@ -108,23 +120,26 @@ def main():
             results = {s: [] for s in a.solvers}
             for _ in range(a.repeat):  # interleaved: each round runs every solver once
                 for sv in a.solvers:
-                    results[sv].append(run(moreau, all_scenes[name], sv, a.steps, tmp, a.tolerance, a.cpu))
+                    results[sv].append(run(moreau, all_scenes[name], sv, a.steps, tmp, a.tolerance, a.cpu, a.stage_cpu))
             med, misses = {}, {}
             for sv, rs in results.items():
                 good = [r for r in rs if "error" not in r]
                 med[sv] = statistics.median(r["solve"] for r in good) if good else None
                 misses[sv] = (good[0]["misses"], good[0]["worst"]) if good else None
-            members = {sv: t for sv, t in med.items() if sv != "auto" and t is not None and misses[sv][0] == 0}
+            members = {sv: t for sv, t in med.items() if not sv.startswith("auto") and t is not None and misses[sv][0] == 0}
             best = min(members, key=members.get) if members else None
-            ratio = med["auto"] / members[best] if best and med.get("auto") else None
+            autos = [sv for sv in a.solvers if sv.startswith("auto")]  # each variant over the best member
+            ratios = {sv: med[sv] / members[best] if best and med.get(sv) else None for sv in autos}
+            ratio = ratios[autos[0]] if autos else None
             first = next(r for rs in results.values() for r in rs if "error" not in r)
             cells = " ".join(f"{'fail' if med[s] is None else f'{1e3 * med[s]:.3f}':>12s}" for s in a.solvers)
             miss_txt = ", ".join(f"{s} {m[0]} (worst {m[1]:.1e})" for s, m in misses.items() if m and m[0])
             print(f"{name:24s} {first['tol']:7.0e} {first['steps']:5d} {cells} {best or '-':>12s} "
-                  f"{'-' if ratio is None else f'{ratio:.2f}':>9s}  {miss_txt}", flush=True)
+                  f"{' '.join('-' if x is None else f'{x:.2f}' for x in ratios.values()):>9s}  {miss_txt}", flush=True)
             rows.append({"scene": name, "tolerance": first["tol"], "steps": first["steps"],
                          "ms_per_step": {s: None if t is None else 1e3 * t for s, t in med.items()},
-                         "misses": {s: m for s, m in misses.items()}, "best_member": best, "auto_over_best": ratio})
+                         "misses": {s: m for s, m in misses.items()}, "best_member": best, "auto_over_best": ratio,
+                         "over_best": ratios})
     json.dump(rows, open(os.path.join(a.out, "bench_scenes.json"), "w"), indent=1)
     print(f"wrote {a.out}/bench_scenes.json")
 

@@ -420,6 +420,29 @@ void ContactStages::continue_nearby(const EntitySet& set, std::vector<std::ptrdi
   }
 }
 
+void ContactStages::setup_solver(State& state) {
+  const std::vector<FieldSpec> fields = solver->state_fields(state.dimension());
+  if (fields.empty()) return;
+  EntitySet& set = state.add_set(sets::solver);
+  for (FieldSpec f : fields) {
+    f.set = sets::solver;
+    f.depths = 1;
+    f.output = FieldOutput::frame;
+    f.restart = true;
+    f.persist = false;
+    f.needed = Needed::always;
+    set.declare(f);
+  }
+  if (set.rows() == 0) set.add_rows(1);
+  solver->save_state(set);  // a new run's state, in the first frame
+  solver_state_ = true;
+}
+
+void ContactStages::restored(State& state, bool solver_state) {
+  initial_overlaps_checked_ = true;
+  if (solver_state_ && solver_state) solver->load_state(state.set(sets::solver));
+}
+
 void ContactStages::solve(StepContext& c) {
   const State& st = c.state;
   const int d = st.dimension();
@@ -443,6 +466,7 @@ void ContactStages::solve(StepContext& c) {
   assembly_.lend(problem_);
   solve_with_laws(c);
   assembly_.take_back(problem_);
+  if (solver_state_) solver->save_state(c.state.set(sets::solver));
   for (Eigen::Index i = 0; i < r_.size(); ++i)
     if (!std::isfinite(r_[i])) throw RunError("the contact solver returned non-finite impulses at step " + std::to_string(c.step));
   // With "on_failure": "stop" a miss ends the run below: the error message says it all.

@@ -91,9 +91,14 @@ class ContactStages {
   /// no contacts.
   const Eigen::VectorXd& local_velocity_begin() const { return u_begin_; }
   const Eigen::VectorXd& local_velocity_end() const { return u_; }
+  /// After the solver is made: its own state (Solver::state_fields) as the `solver` set,
+  /// one row, written with every frame and restored on restart.
+  void setup_solver(State& state);
   /// A restart loaded the `contacts` set (keys and what persists) from its frame: the next
   /// warm start continues from it, and the start-of-run overlap warning is not given.
-  void restored() { initial_overlaps_checked_ = true; }
+  /// `solver_state`: the frame also held the solver's state (the `solver` set), which the
+  /// solver takes back; without it the solver starts as in a new run.
+  void restored(State& state, bool solver_state);
 
  private:
   struct Detected {
@@ -141,6 +146,7 @@ class ContactStages {
   std::vector<double> start_gaps_;
   std::vector<double> swept_caps_;  ///< per contact, the largest normal shift (swept contacts)
   bool swept_caps(const StepContext& c);
+  bool solver_state_ = false;  ///< the solver keeps state over solves (the `solver` set)
   SweptDetection swept_;
   LocalProblem problem_;
   Eigen::VectorXd r_, u_;

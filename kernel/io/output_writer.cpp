@@ -657,7 +657,7 @@ void OutputWriter::write_frame_file(long step, double time, const State& state, 
       h5::Id bg = group_of(g.get(), sets::bodies);
       h5::write_doubles(bg.get(), node_fields::position, x.data(), state.bodies(), d);
     }
-    h5::Id solver = h5::group(H5Gcreate2(g.get(), "solver", H5P_DEFAULT, H5P_DEFAULT, H5P_DEFAULT));
+    h5::Id solver = group_of(g.get(), sets::solver);  // may hold the solver's own state already
     h5::attribute_long(solver.get(), "iterations", iterations);
     h5::attribute_double(solver.get(), "error", error);
     if (m.header.display) write_display_frame(g.get(), *m.header.display, state);

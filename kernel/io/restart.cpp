@@ -44,6 +44,15 @@ std::vector<long> frames_of(hid_t file, const std::string& path) {
   return steps;
 }
 
+/// Whether frame `fp` holds every field of the `solver` set (files before it have none).
+bool solver_state_in(hid_t file, const std::string& fp, const State& state) {
+  const EntitySet* set = state.find_set(sets::solver);
+  if (!set) return false;
+  for (const auto& field : set->fields())
+    if (!h5::exists(file, fp + "/" + sets::solver + "/" + field.name())) return false;
+  return true;
+}
+
 }  // namespace
 
 std::vector<long> list_frames(const std::string& path) {
@@ -91,8 +100,10 @@ RestartFrame read_restart(const std::string& path, std::optional<long> step, Sta
     const auto dims = h5::dimensions(f.get(), kp);
     contacts->rebuild(std::vector<std::ptrdiff_t>(dims.empty() ? 0 : dims[0], -1));
   }
+  r.solver_state = solver_state_in(f.get(), fp, state);
   for (auto& set : state.sets()) {
     if (set.name() == sets::contacts && set.rows() == 0) continue;
+    if (set.name() == sets::solver && !r.solver_state) continue;  // an older file: the solver starts anew
     for (auto& field : set.fields()) {
       const bool frame = field.spec().output == FieldOutput::frame;
       if (!field.spec().restart && !(frame && set.name() == sets::contacts)) continue;

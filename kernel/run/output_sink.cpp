@@ -44,7 +44,7 @@ std::unique_ptr<FrameSink> open_output_from(const World& world, const std::strin
 long load_restart(World& world, const std::string& file, std::optional<long> frame) {
   const io::RestartFrame r = io::read_restart(file, frame, world.state);
   io::check_restart(file, r, world.state, world.contacts ? world.contacts->contactors.size() : 0);
-  if (world.contacts) world.contacts->restored();
+  if (world.contacts) world.contacts->restored(world.state, r.solver_state);
   return r.step;
 }
 

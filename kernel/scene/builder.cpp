@@ -399,6 +399,7 @@ class SceneChecker {
     }
     cs->broadphase = reg.create<BroadPhase>(broadphase_.name, broadphase_.params, ctx, broadphase_.pointer);
     cs->solver = reg.create<Solver>(solver_.name, solver_.params, ctx, solver_.pointer);
+    cs->setup_solver(w.state);
     cs->alert = detection_["alert"].get<double>();
     // A law acting on open contacts (a meniscus) sees them only within the alert distance.
     for (std::size_t l = 0; l < cs->laws.size(); ++l)

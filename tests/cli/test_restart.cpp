@@ -42,7 +42,7 @@ std::string spinning_scene(double duration) {
 
 /// Three boxes of unequal edges (anisotropic inertia) stacked askew on a plane, with
 /// friction: contacts persist across the restart, so it must carry their warm start.
-std::string box_stack_scene() {
+std::string box_stack_scene(const std::string& solver = "") {
   std::string bodies = R"({"name": "floor", "fixed": true, "position": [0, 0, 0],
      "contactors": [{"shape": "plane", "normal": [0, 0, 1], "group": "floor"}]})";
   for (int i = 0; i < 3; ++i)
@@ -57,7 +57,8 @@ std::string box_stack_scene() {
   "materials": {"wood": {"density": 700}},
   "laws": {"rough": {"type": "coulomb", "friction": 0.5}},
   "bodies": [)" + bodies + R"(],
-  "interactions": [{"groups": ["box", "floor"], "law": "rough"}, {"groups": ["box", "box"], "law": "rough"}],
+  "interactions": [{"groups": ["box", "floor"], "law": "rough"}, {"groups": ["box", "box"], "law": "rough"}],)" +
+         (solver.empty() ? std::string() : "\n  \"solver\": " + solver + ",") + R"(
   "output": {"file": "out.h5", "every": 50}
 })";
 }
@@ -112,6 +113,48 @@ TEST(Restart, WithContactsTheWarmStartIsRestoredAndTheContinuationBitIdentical) 
   ASSERT_EQ(a.size(), b.size());
   ASSERT_FALSE(a.empty());
   for (std::size_t i = 0; i < a.size(); ++i) EXPECT_EQ(a[i], b[i]) << "impulse[" << i << "] differs";
+}
+
+TEST(Restart, AutosMemoryIsSavedWithEachFrameAndRestored) {
+  // `auto` with `remember` chooses each solve's first member from what the earlier solves
+  // cost: that memory is the solver's state (/frames/N/solver/…), restored on restart.
+  const fs::path dir = scratch_dir("restart_auto_memory");
+  const std::string solver = R"({"type": "auto", "tolerance": 1e-8, "remember": true})";
+  const fs::path scene = write_file(dir, "scene.json", box_stack_scene(solver));
+  ASSERT_EQ(run_moreau({"run", scene.string(), "--out", "full.h5", "--quiet"}, dir).code, 0);
+  ASSERT_EQ(run_moreau({"run", scene.string(), "--out", "part.h5", "--steps", "150", "--quiet"}, dir).code, 0);
+  const std::string full = (dir / "full.h5").string(), part = (dir / "part.h5").string();
+  const auto cost = read_doubles(part, "/frames/00000150/solver/member_cost");
+  ASSERT_EQ(cost.size(), 5u);
+  EXPECT_GT(*std::max_element(cost.begin(), cost.end()), 0.0) << "the memory has learnt something by the restart frame";
+  Result r = run_moreau({"run", scene.string(), "--restart", "part.h5", "--out", "rest.h5", "--quiet"}, dir);
+  ASSERT_EQ(r.code, 0) << r.err;
+  const std::string rest = (dir / "rest.h5").string();
+  expect_same_frame(full, rest, "00000300");
+  for (const char* f : {"contacts/impulse", "solver/solves", "solver/member_cost", "solver/member_iteration",
+                        "solver/member_next_try", "solver/member_try_interval"}) {
+    const auto a = read_doubles(full, std::string("/frames/00000300/") + f), b = read_doubles(rest, std::string("/frames/00000300/") + f);
+    ASSERT_EQ(a.size(), b.size()) << f;
+    ASSERT_FALSE(a.empty()) << f;
+    for (std::size_t i = 0; i < a.size(); ++i) EXPECT_EQ(a[i], b[i]) << f << "[" << i << "] differs";
+  }
+  // A file written before the solver's state was saved (or by a run without `remember`)
+  // still restarts: the memory starts empty, so its solves count from the restart.
+  const std::string old = (dir / "old.h5").string();
+  fs::copy_file(part, old);
+  {
+    hid_t f = H5Fopen(old.c_str(), H5F_ACC_RDWR, H5P_DEFAULT);
+    for (const char* n : {"solves", "member_cost", "member_iteration", "member_next_try", "member_try_interval"})
+      ASSERT_GE(H5Ldelete(f, (std::string("/frames/00000150/solver/") + n).c_str(), H5P_DEFAULT), 0) << n;
+    H5Fclose(f);
+  }
+  Result o = run_moreau({"run", scene.string(), "--restart", old, "--out", "from_old.h5", "--quiet"}, dir);
+  ASSERT_EQ(o.code, 0) << o.err;
+  const double solves_full = read_doubles(full, "/frames/00000300/solver/solves").at(0);
+  const double solves_part = read_doubles(part, "/frames/00000150/solver/solves").at(0);
+  const double solves_old = read_doubles((dir / "from_old.h5").string(), "/frames/00000300/solver/solves").at(0);
+  EXPECT_GT(solves_part, 0);
+  EXPECT_EQ(solves_old, solves_full - solves_part);
 }
 
 TEST(Restart, FromAChosenFrameAndIntoTheSameFile) {

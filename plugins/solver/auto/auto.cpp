@@ -101,7 +101,7 @@ class Auto : public Solver {
     s.integer("nlgs_sweeps", "maximum sweeps of the first NLGS stage (0: start with the other members)").min(0).fallback(100000);
     s.integer("check_every", "NLGS sweeps between two evaluations of the error (as nlgs)").min(1).fallback(5);
     s.integer("direct_max_contacts", "above this many contacts, no sparse factorisation (Newton, ADMM)").min(0).fallback(1000);
-    s.boolean("remember", "over the solves of a run, start with the member that was cheapest on the earlier ones (off by default: a restart does not restore this memory, so it would not be bit-identical)").fallback(false);
+    s.boolean("remember", "over the solves of a run, start with the member that was cheapest on the earlier ones (the memory is saved with every frame and restored on restart)").fallback(false);
     return s;
   }
   static constexpr const char* doc =
@@ -113,6 +113,45 @@ class Auto : public Solver {
         remember_(p.boolean("remember")) {}
 
   bool reads_matrix_with_factor() const override { return false; }
+
+  // With `remember`, the memory is part of the run's state (docs/output.md, "The solver's
+  // state"): written with every frame and restored by `--restart`, so a continuation is
+  // bit-identical. Per member, in the order nlgs, apgd, newton, newton from the best, admm.
+  std::vector<FieldSpec> state_fields(int) const override {
+    if (!remember_) return {};
+    auto f = [](const char* name, int n, const char* units, const char* doc, FileType t) {
+      return field_spec(sets::solver, name, n, n, 1, units, FieldOutput::frame, true, doc, t);
+    };
+    return {f("solves", 1, "1", "auto: solves of the run with contacts", FileType::int32),
+            f("member_cost", member_count, "1", "auto: each member's remembered work per contact to converge from the warm start (0: unknown)", FileType::real),
+            f("member_iteration", member_count, "1", "auto: each member's remembered work per contact of one iteration (0: unknown)", FileType::real),
+            f("member_next_try", member_count, "1", "auto: the solve from which each member may be tried first again", FileType::int32),
+            f("member_try_interval", member_count, "1", "auto: solves between two such tries", FileType::int32)};
+  }
+  void save_state(EntitySet& set) const override {
+    if (!remember_) return;
+    set.field("solves").data()[0] = static_cast<double>(solve_index_);
+    double *cost = set.field("member_cost").data(), *step = set.field("member_iteration").data();
+    double *next = set.field("member_next_try").data(), *interval = set.field("member_try_interval").data();
+    for (int k = 0; k < member_count; ++k) {
+      cost[k] = memory_[k].cost;
+      step[k] = memory_[k].step;
+      next[k] = static_cast<double>(memory_[k].next_probe);
+      interval[k] = static_cast<double>(memory_[k].interval);
+    }
+  }
+  void load_state(const EntitySet& set) override {
+    if (!remember_) return;
+    solve_index_ = static_cast<long>(set.field("solves").data()[0]);
+    const double *cost = set.field("member_cost").data(), *step = set.field("member_iteration").data();
+    const double *next = set.field("member_next_try").data(), *interval = set.field("member_try_interval").data();
+    for (int k = 0; k < member_count; ++k) {
+      memory_[k].cost = cost[k];
+      memory_[k].step = step[k];
+      memory_[k].next_probe = static_cast<long>(next[k]);
+      memory_[k].interval = std::max(1L, static_cast<long>(interval[k]));
+    }
+  }
 
   SolverReport solve(const LocalProblem& P, Eigen::VectorXd& r, Eigen::VectorXd& u) override {
     const int d = P.dim;
@@ -651,10 +690,10 @@ class Auto : public Solver {
       const MemberState& s = m[k];
       if (s.slices == 0) continue;
       Memory& mem = memory_[k];
-      if (s.per_iteration > 0) mem.step = s.per_iteration / nc_;
+      if (s.per_iteration > 0 && std::isfinite(s.per_iteration)) mem.step = s.per_iteration / nc_;
       if (!s.clean) continue;
       const double c = (k == winner_ ? s.spent : s.need) / nc_;
-      if (c > 0) mem.cost = mem.cost > 0 ? 0.5 * mem.cost + 0.5 * c : c;
+      if (c > 0 && std::isfinite(c)) mem.cost = mem.cost > 0 ? 0.5 * mem.cost + 0.5 * c : c;
     }
   }
 

@@ -3,6 +3,8 @@
 // `moreau fclib solve`. Parameters (tolerance, max_iterations, …) come from its schema.
 #include <moreau/contact_problem.hpp>
 #include <moreau/plugin.hpp>
+#include <moreau/state.hpp>
+#include <vector>
 
 namespace moreau {
 
@@ -27,6 +29,20 @@ class MOREAU_API Solver : public Plugin {
   /// through body velocities only says false, and the time-stepper then skips assembling
   /// W (the largest array of a step) and passes it empty (0 × 0).
   virtual bool reads_matrix_with_factor() const { return true; }
+
+  /// What the solver keeps from one solve to the next that changes its later answers (e.g.
+  /// `auto`'s memory of its members' costs, with `remember`), as fields of the kernel's
+  /// `solver` set (one row; `set`, `depths`, `output` and `restart` are the kernel's). They
+  /// are written with every frame (/frames/N/solver/<name>, docs/output.md) and restored by
+  /// `--restart`, so a continuation stays bit-identical. None (the default): the solver's
+  /// answer depends only on the problem and the warm start.
+  virtual std::vector<FieldSpec> state_fields(int /*dim*/) const { return {}; }
+  /// Writes that state into the set's fields; called after each step's solve.
+  virtual void save_state(EntitySet& /*set*/) const {}
+  /// Takes that state from the set's fields; called once, before the first solve of a run
+  /// restarted from a frame that holds every one of them (a file without them: the state
+  /// starts as in a new run).
+  virtual void load_state(const EntitySet& /*set*/) {}
 };
 
 }  // namespace moreau

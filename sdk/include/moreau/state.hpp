@@ -50,6 +50,7 @@ enum class Needed {
 namespace sets {
 inline constexpr const char* bodies = "bodies";
 inline constexpr const char* contacts = "contacts";
+inline constexpr const char* solver = "solver";  ///< one row: a solver's own state (Solver::state_fields)
 }  // namespace sets
 
 struct FieldSpec {
