@@ -168,6 +168,7 @@ class Auto : public Solver {
     bodies_ = P.factor.present();
     apgd_check_every_ = 1;  // records() may raise it
     assembled_ready_ = false;
+    best_u_ok_ = false;
     // 0. The start: given W (an FCLib problem), a warm start that already meets the
     // tolerance is the answer, for one product and one error evaluation (less than a
     // sweep); from r = 0 the answer is r = 0 exactly when no contact approaches (every
@@ -181,12 +182,13 @@ class Auto : public Solver {
         u = P.q;
         start_err = natural_map_error(P, r, u);
       }
-      if (bodies_ && !(start_err <= tol_)) records(P, r);
+      if (bodies_ && !(start_err <= tol_)) records(P, r, true);
     } else if (bodies_) {
       // In a time step NLGS takes its first sweep as `nlgs` does: a warm start accepted at
       // every step of a resting stack lets its residual (up to the tolerance) add up into
-      // a slow creep of the bodies.
-      records(P, r);  // the records, once per solve (or when NLGS first runs)
+      // a slow creep of the bodies. A solve that starts with another remembered member
+      // packs NLGS's records only if NLGS runs (run_nlgs()).
+      records(P, r, !starts_with_another_member(nc <= direct_max_contacts_));  // once per solve
     } else {
       velocities(r, u);
       start_err = natural_map_error(P, r, u);
@@ -208,7 +210,7 @@ class Auto : public Solver {
       // of spheres), the first NLGS stage costs as much as APGD's whole warm solve before its
       // rate is even measured (10⁴ spheres: ~50 ms a step), so the slices start at once, as
       // with `nlgs_sweeps: 0`; NLGS stays a member of the slices.
-      nlgs_first = records_packed_;  // records() packs them exactly then (within 4× the cache)
+      nlgs_first = records_fit_;  // records() packs them then (within 4× the cache)
     }
     start_ = r;
     cold_ = (r.array() == 0).all();
@@ -235,11 +237,17 @@ class Auto : public Solver {
     auto finish = [&]() {
       if (!std::isfinite(best_err_)) best_ = start_;  // no iterate was ever evaluated
       r = best_;
-      velocities(r, u);
       rep.iterations = total_;
-      rep.error = natural_map_error(P, r, u);
+      rep.work = work_;
+      if (best_u_ok_) {  // u and the error of the best iterate, as its member computed them
+        u = best_u_;
+        rep.error = best_err_;
+      } else {
+        velocities(r, u);
+        rep.error = natural_map_error(P, r, u);
+        rep.work += costs_.product + costs_.error;  // the answer's u and error, recomputed
+      }
       rep.converged = rep.error <= tol_;
-      rep.work = work_ + costs_.product + costs_.error;  // the answer's u and error, recomputed
       if (remember_) learn(m);
       return rep;
     };
@@ -315,6 +323,17 @@ class Auto : public Solver {
     return !s.available || s.iterations >= member_max(k) || (s.slices >= 3 && s.fruitless >= 3);
   }
 
+  /// With `remember`: whether this solve starts with a member other than NLGS (the
+  /// incumbent() of the members available on a problem of this size).
+  bool starts_with_another_member(bool direct) const {
+    if (!remember_) return false;
+    int best = -1;
+    for (int k = 0; k < member_count; ++k)
+      if ((k == nlgs_member || k == apgd_member || direct) && memory_[k].cost > 0 && (best < 0 || memory_[k].cost < memory_[best].cost))
+        best = k;
+    return best > nlgs_member;
+  }
+
   /// u = W x + q, through the bodies when only the factor was given: by NLGS's records
   /// when packed, else by APGD's packed product when APGD ran in this solve, else through
   /// the factor.
@@ -332,12 +351,14 @@ class Auto : public Solver {
   /// only while they fit in 4× the cache. Beyond that NLGS does not run first (see solve())
   /// and they are packed when it first runs, if ever: at 10⁴ spheres the packing cost about
   /// 3 ms a step (5 % of APGD's warm solve), for nothing.
-  void records(const LocalProblem& P, const Eigen::VectorXd& r) {
+  /// `pack`: false when the solve starts with another remembered member (NLGS may not run).
+  void records(const LocalProblem& P, const Eigen::VectorXd& r, bool pack) {
     body_sweeper_.layout(P);
-    records_packed_ = WorkCosts::record_bytes(P, static_cast<double>(body_sweeper_.record_size())) < 4 * WorkCosts::cache_bytes;
+    records_fit_ = WorkCosts::record_bytes(P, static_cast<double>(body_sweeper_.record_size())) < 4 * WorkCosts::cache_bytes;
+    records_packed_ = records_fit_ && pack;
     if (records_packed_) body_sweeper_.pack(P, r);
     // There APGD's steps dominate: its error every 3 steps (10⁴ spheres: 1.14× per step).
-    apgd_check_every_ = records_packed_ ? 1 : 3;
+    apgd_check_every_ = records_fit_ ? 1 : 3;
   }
   /// The start's error before the slices (nlgs_sweeps = 0, or records beyond the caches).
   /// Without NLGS's records APGD measures it (it packs its product for its first slice
@@ -363,6 +384,7 @@ class Auto : public Solver {
   }
   void keep(const Eigen::VectorXd& x, double e) {
     if (e < best_err_ && x.allFinite()) {
+      best_u_ok_ = false;
       best_err_ = e;
       best_ = x;
       best_by_ = current_;
@@ -580,7 +602,12 @@ class Auto : public Solver {
         return 0;
     }
     total_ += std::max<long>(s.iterations, 1);
+    const double before = best_err_;
     keep(x, s.error);
+    if (who == apgd_member && best_err_ < before) {  // its u = W x + q: finish() need not recompute it
+      best_u_ = v;
+      best_u_ok_ = true;
+    }
     *reached = s.error;
     return 0;
   }
@@ -725,6 +752,9 @@ class Auto : public Solver {
   int best_by_ = -1;      ///< the member whose iterate is best_
   LocalProblem assembled_;
   bool assembled_ready_ = false;
+  bool records_fit_ = false;     ///< NLGS's records fit in 4× the cache (records())
+  Eigen::VectorXd best_u_;      ///< W best_ + q, when its member gave it (best_u_ok_)
+  bool best_u_ok_ = false;
   std::vector<Eigen::Index> order_;
   struct Check {
     double t, err;
