@@ -254,6 +254,7 @@ class Auto : public Solver {
 
     // 0. The incumbent, and now and then another member first on the incumbent's budget.
     const int inc = remember_ ? incumbent(m) : -1;
+    bool challenged = false;  // a challenger ran first and lost
     if (inc >= 0) {
       const int c = challenger(m, inc);
       if (c >= 0) {
@@ -263,8 +264,8 @@ class Auto : public Solver {
           mc.interval = 4;
         } else {
           mc.interval = std::min<long>(2 * mc.interval, 256);
-          m[nlgs_member].clean = false;  // the others now start from its iterate
-          m[apgd_member].clean = false;
+          challenged = true;
+          m[apgd_member].clean = false;  // the others now start from its iterate; NLGS from the warm start
           m[newton_member].clean = false;
         }
         mc.next_probe = solve_index_ + mc.interval;
@@ -280,11 +281,12 @@ class Auto : public Solver {
       const long before_it = total_;
       const double t0 = trace_ ? thread_seconds() : 0;
       double reached = inf;
-      Eigen::VectorXd x = best_;  // the warm start, unless a tried member did better
-      if ((x - start_).squaredNorm() != 0) {
-        ms.clean = false;
-        if (bodies_) body_sweeper_.reset_velocities(x);
-      }
+      // The warm start, unless a tried member did better; after a lost challenge the warm
+      // start (the challenger's iterate, whose error is all that is known, can be far worse:
+      // APGD's on bonded contacts), with Δv set anew (the challenger may have moved it).
+      Eigen::VectorXd x = challenged ? start_ : best_;
+      if ((x - start_).squaredNorm() != 0) ms.clean = false;
+      if (bodies_ && (challenged || !ms.clean)) body_sweeper_.reset_velocities(x);
       current_ = nlgs_member;
       const double rate = run_nlgs(x, std::min(nlgs_sweeps_, max_it_), 0, true, &reached);
       ms.iterations += total_ - before_it;
@@ -431,8 +433,15 @@ class Auto : public Solver {
     for (int k = 0; k < member_count; ++k) {
       if (k == inc || !m[k].available || memory_[k].next_probe > solve_index_) continue;
       if (k == newton_member) continue;  // from the best iterate: only useful after another member
-      const double first_steps = (k == newton_start_member || k == admm_member ? 2.0 : 5.0) * memory_[k].step;
-      if (memory_[k].step > 0 && first_steps > budget) {  // cannot show anything within the budget
+      // Its first iterations' work per contact: remembered, or estimated for one not yet
+      // tried (Newton and ADMM: a factorisation each; on light steps more than a whole solve).
+      const bool factors = k == newton_start_member || k == admm_member;
+      const double step = memory_[k].step > 0 ? memory_[k].step
+                          : factors           ? newton_step_estimate() / nc_
+                          : k == apgd_member  ? (costs_.product + costs_.error) / nc_
+                                              : costs_.sweep / nc_;
+      const double first_steps = (factors ? 2.0 : 5.0) * step;
+      if (first_steps > budget) {  // cannot show anything within the budget
         memory_[k].interval = std::min<long>(2 * memory_[k].interval, 256);
         memory_[k].next_probe = solve_index_ + memory_[k].interval;
         continue;
