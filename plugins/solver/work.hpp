@@ -46,10 +46,16 @@ struct WorkCosts {
   /// order and the bodies' Δv at random, and becomes memory-bound, where APGD's products
   /// stream. Measured on 10⁴ touching spheres (30894 contacts, 12 MB of records): 4.3 ns per
   /// counted unit for the sweeps against 1.2 for APGD; at a few hundred contacts both follow
-  /// the model. `nlgs` alone and `auto`'s NLGS count the same.
-  static double body_sweep(const LocalProblem& P, double record) {
+  /// the model. `nlgs` alone and `auto`'s NLGS count the same. `dense`: records with M⁻¹Hᵀ
+  /// blocks (3D bodies whose inverse mass is not one scalar per block: boxes, clusters,
+  /// convex grains; BodySweeper::dense_inverse_mass) cost more than their size says: measured
+  /// in time steps (MOREAU_AUTO_TRACE, 150 steps at 1e-3), ns per counted unit of NLGS over
+  /// APGD's: box_tower_3d 2.3, clusters_3d 1.7 (4.8 once dense), against 0.9–1.2 for spheres
+  /// and disks, so such a sweep counts 2.5 times. (2D polygons, one scalar per block,
+  /// measured 3.1–3.2 too: not corrected, cause not found.)
+  static double body_sweep(const LocalProblem& P, double record, bool dense) {
     const double nc = static_cast<double>(P.contacts());
-    const double sweep = nc * (0.3 * record + (P.dim == 2 ? 5.0 : 15.0)) + 200;
+    const double sweep = (dense ? 2.5 : 1.0) * (nc * (0.3 * record + (P.dim == 2 ? 5.0 : 15.0)) + 200);
     const double bytes = record_bytes(P, record);
     return bytes > cache_bytes ? sweep * std::min(4.0, 1 + 1.5 * std::log2(bytes / cache_bytes)) : sweep;
   }

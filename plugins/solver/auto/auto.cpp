@@ -5,7 +5,7 @@
 //
 // 0. The start: given W, a warm start within the tolerance is the answer (one product and
 //    one error evaluation); from r = 0, r = 0 is the answer when no contact approaches.
-// With `remember` (off by default), over the solves of a run it remembers each member's
+// With `remember` (on by default), over the solves of a run it remembers each member's
 // work per contact to converge from the warm start: the member with the lowest
 // remembered work (the incumbent) goes first (NLGS when nothing is known); every few solves
 // (4, doubling after each loss, at most 256) another member is tried first with the
@@ -101,7 +101,7 @@ class Auto : public Solver {
     s.integer("nlgs_sweeps", "maximum sweeps of the first NLGS stage (0: start with the other members)").min(0).fallback(100000);
     s.integer("check_every", "NLGS sweeps between two evaluations of the error (as nlgs)").min(1).fallback(5);
     s.integer("direct_max_contacts", "above this many contacts, no sparse factorisation (Newton, ADMM)").min(0).fallback(1000);
-    s.boolean("remember", "over the solves of a run, start with the member that was cheapest on the earlier ones (the memory is saved with every frame and restored on restart)").fallback(false);
+    s.boolean("remember", "over the solves of a run, start with the member that was cheapest on the earlier ones (the memory is saved with every frame and restored on restart)").fallback(true);
     return s;
   }
   static constexpr const char* doc =
@@ -205,7 +205,8 @@ class Auto : public Solver {
     bool nlgs_first = true;  // run the first NLGS stage (false: records far beyond the caches)
     if (bodies_) {
       const double record = static_cast<double>(body_sweeper_.record_size());
-      costs_.sweep = WorkCosts::body_sweep(P, record);  // memory-bound beyond the caches
+      // memory-bound beyond the caches; records with M⁻¹Hᵀ blocks count more (work.hpp)
+      costs_.sweep = WorkCosts::body_sweep(P, record, body_sweeper_.dense_inverse_mass());
       // Where its cache factor reaches its cap (records beyond 4× the cache: about 2·10⁴ contacts
       // of spheres), the first NLGS stage costs as much as APGD's whole warm solve before its
       // rate is even measured (10⁴ spheres: ~50 ms a step), so the slices start at once, as

@@ -85,7 +85,8 @@ class Nlgs : public Solver {
     if (ordering_ == "reverse") std::reverse(order_.begin(), order_.end());
     // Counted work (plugins/solver/work.hpp), as `auto` counts its NLGS sweeps and checks.
     WorkCosts cost = WorkCosts::of(P, bodies);
-    if (bodies) cost.sweep = WorkCosts::body_sweep(P, static_cast<double>(body_sweeper_.record_size()));
+    if (bodies)
+      cost.sweep = WorkCosts::body_sweep(P, static_cast<double>(body_sweeper_.record_size()), body_sweeper_.dense_inverse_mass());
     std::mt19937 rng(seed_);
     for (long it = 1; it <= max_it_; ++it) {
       if (ordering_ == "shuffle") std::shuffle(order_.begin(), order_.end(), rng);

@@ -42,6 +42,9 @@ class BodySweeper {
   void reset_velocities(const Eigen::VectorXd& r);
   /// Doubles per contact record (what a sweep reads per contact): for cost models.
   std::size_t record_size() const { return stride_; }
+  /// Whether the records carry M⁻¹Hᵀ blocks (bodies whose inverse mass is not one scalar per
+  /// block: boxes, polygons, clusters), whose Δv updates are dense products: for cost models.
+  bool dense_inverse_mass() const { return !iso_ && pd_ == d_ && pk_ == k_; }
 
  private:
   int d_ = 3, k_ = 6;         ///< the problem's: contact dimension, unknowns per body
