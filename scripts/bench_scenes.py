@@ -47,7 +47,7 @@ def scenes(steps):
             s = json.load(open(os.path.join(cfg, f)))
             if s.get("interactions"):
                 out[f[:-5]] = s
-    out["silo_2d"] = corpus.silo_2d(steps=5000)
+    out["silo_issue15"] = corpus.silo_2d(steps=5000)  # the issue's silo (configs/silo_2d is another)
     for s in out.values():
         s.pop("export_problems", None)
         s["output"] = {"file": "out.h5", "every": 10 ** 9, "display": "points"}  # first and last frames only

@@ -128,7 +128,21 @@ TEST(OutputLayout, FollowsTheContract2D) {
 TEST(OutputLayout, RestartsFromAVersion1File) {
   const fs::path dir = scratch_dir("restart_v1");
   const fs::path data = fs::path(MOREAU_SOURCE_DIR) / "tests" / "io" / "data";
-  fs::copy_file(data / "box_stack_v1.json", dir / "scene.json");
+  // `auto` without `remember`: a v1 file holds no solver state, so the restart starts with
+  // an empty memory while the uninterrupted run has learnt one; the two then take other
+  // members on the steps at rest and end apart within the solves' tolerance (1.5e-6 rad on
+  // these boxes), which is not what this test compares (docs/output.md "The solver's state").
+  {
+    std::ifstream in(data / "box_stack_v1.json");
+    std::stringstream text;
+    text << in.rdbuf();
+    std::string scene = text.str();
+    const std::string format = "\"format\": \"moreau-scene/1\",";
+    const auto at = scene.find(format);
+    ASSERT_NE(at, std::string::npos);
+    scene.insert(at + format.size(), "\n \"solver\": {\"type\": \"auto\", \"remember\": false},");
+    std::ofstream(dir / "scene.json") << scene;
+  }
   fs::copy_file(data / "box_stack_v1.h5", dir / "v1.h5");
   ASSERT_EQ(run_moreau({"run", "scene.json", "--out", "full.h5", "--quiet"}, dir).code, 0);
   Result r = run_moreau({"run", "scene.json", "--restart", "v1.h5", "--out", "rest.h5", "--quiet"}, dir);
