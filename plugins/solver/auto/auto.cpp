@@ -637,7 +637,9 @@ class Auto : public Solver {
     total_ += std::max<long>(s.iterations, 1);
     const double before = best_err_;
     keep(x, s.error);
-    if (who == apgd_member && best_err_ < before) {  // its u = W x + q: finish() need not recompute it
+    // Through the bodies its u = W x + q is the one the time-stepper would get from APGD
+    // alone: finish() need not recompute it (with W given it is recomputed from W exactly).
+    if (bodies_ && who == apgd_member && best_err_ < before) {
       best_u_ = v;
       best_u_ok_ = true;
     }
