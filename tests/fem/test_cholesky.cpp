@@ -82,6 +82,25 @@ TEST(FemCholesky, FactorColumnsGiveTheInverseEntries) {
   }
 }
 
+// A body whose every DOF is fixed (found by the scene fuzz target: a mesh coarser than the
+// body, both ends fixed): CHOLMOD gave no factor for the 0 × 0 matrix and the run crashed.
+TEST(FemCholesky, EmptyMatrixFactorisesAndSolves) {
+  const SparseMatrix A(0, 0);
+  for (CholeskyBackend backend : backends) {
+    if (!backend_available(backend)) continue;
+    SCOPED_TRACE(std::string(backend_name(backend)));
+    SparseCholesky chol(backend);
+    chol.factorize(A);
+    chol.refactorize(A);
+    EXPECT_EQ(chol.rows(), 0);
+    EXPECT_EQ(chol.solve(Eigen::VectorXd(0)).size(), 0);
+    const Eigen::MatrixXd X = chol.solve_columns(Eigen::MatrixXd(0, 3));
+    EXPECT_EQ(X.rows(), 0);
+    EXPECT_EQ(X.cols(), 3);
+    EXPECT_FALSE(chol.has_factor_columns());
+  }
+}
+
 TEST(FemCholesky, RefusesSingularOrIndefinite) {
   // A free body without mass: K alone has the rigid motions in its null space.
   const Mesh m = rectangle_mesh({0, 0}, {1, 1}, 0.25, ElementType::Q4);

@@ -161,6 +161,16 @@ struct SolverOf<CholmodSupernodal> final : Solver {
 };
 #endif
 
+/// A body whose every DOF is fixed has a 0 × 0 matrix: nothing to factorise or solve
+/// (CHOLMOD's analysis of an empty matrix gives no factor, which Eigen's wrapper then reads).
+struct EmptySolver final : Solver {
+  void analyze(const Sparse&) override {}
+  void factor(const Sparse&) override {}
+  Eigen::ComputationInfo info() const override { return Eigen::Success; }
+  Eigen::VectorXd solve(const Eigen::VectorXd& b) const override { return b; }
+  Eigen::MatrixXd solve(const Eigen::MatrixXd& B) const override { return B; }
+};
+
 std::unique_ptr<Solver> make_solver(CholeskyBackend backend) {
   switch (backend) {
     case CholeskyBackend::eigen_ldlt:
@@ -285,7 +295,7 @@ void SparseCholesky::factorize(const Eigen::SparseMatrix<double>& A) {
   if (A.rows() != A.cols()) throw std::invalid_argument("sparse Cholesky: the matrix is not square");
   Impl& m = *impl_;
   m.resolved = m.requested == CholeskyBackend::automatic ? automatic_backend() : m.requested;
-  m.solver = make_solver(m.resolved);
+  m.solver = A.rows() == 0 ? std::make_unique<EmptySolver>() : make_solver(m.resolved);
   m.reset_view();
   m.rows = A.rows();
   m.solver->analyze(A);
