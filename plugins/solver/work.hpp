@@ -50,12 +50,17 @@ struct WorkCosts {
   /// blocks (3D bodies whose inverse mass is not one scalar per block: boxes, clusters,
   /// convex grains; BodySweeper::dense_inverse_mass) cost more than their size says: measured
   /// in time steps (MOREAU_AUTO_TRACE, 150 steps at 1e-3), ns per counted unit of NLGS over
-  /// APGD's: box_tower_3d 2.3, clusters_3d 1.7 (4.8 once dense), against 0.9–1.2 for spheres
-  /// and disks, so such a sweep counts 2.5 times. (2D polygons, one scalar per block,
-  /// measured 3.1–3.2 too: not corrected, cause not found.)
+  /// APGD's: box_tower_3d 2.3, clusters_3d 1.7 (4.8 once dense), so such a sweep counted 2.5
+  /// times. Measured alone (`nlgs` and `apgd` runs, 300 steps at 1e-3, solve-stage CPU over
+  /// counted work, i15-count), every other record kind was under-counted as much: NLGS
+  /// 1.8–2.4 ns per counted unit (disks, polygons, spheres alike) against APGD's 0.63–1.0,
+  /// and dense records 0.37–0.95 with the 2.5. So every body-record sweep counts 2.5 times
+  /// its record-size cost (the local solves of closed contacts, ~40 % of a 2D sweep by perf,
+  /// are in it). Problems given with W (FCLib) do not sweep body records: unchanged.
   static double body_sweep(const LocalProblem& P, double record, bool dense) {
+    (void)dense;  // counted alike since i15-count (see above)
     const double nc = static_cast<double>(P.contacts());
-    const double sweep = (dense ? 2.5 : 1.0) * (nc * (0.3 * record + (P.dim == 2 ? 5.0 : 15.0)) + 200);
+    const double sweep = 2.5 * (nc * (0.3 * record + (P.dim == 2 ? 5.0 : 15.0)) + 200);
     const double bytes = record_bytes(P, record);
     return bytes > cache_bytes ? sweep * std::min(4.0, 1 + 1.5 * std::log2(bytes / cache_bytes)) : sweep;
   }
