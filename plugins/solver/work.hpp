@@ -54,13 +54,15 @@ struct WorkCosts {
   /// times. Measured alone (`nlgs` and `apgd` runs, 300 steps at 1e-3, solve-stage CPU over
   /// counted work, i15-count), every other record kind was under-counted as much: NLGS
   /// 1.8–2.4 ns per counted unit (disks, polygons, spheres alike) against APGD's 0.63–1.0,
-  /// and dense records 0.37–0.95 with the 2.5. So every body-record sweep counts 2.5 times
-  /// its record-size cost (the local solves of closed contacts, ~40 % of a 2D sweep by perf,
-  /// are in it). Problems given with W (FCLib) do not sweep body records: unchanged.
+  /// and dense records 0.37–0.95 with the 2.5 (a ratio of 2.3–3.0 where neither misses). So
+  /// the other records count 3 times their record-size cost (2.5 left auto 1.2–1.6× APGD on
+  /// brick_wall_2d, spheres_in_box_3d, silo_2d, silo_janssen_2d; 3 brings them to 1.04–1.16;
+  /// dense ones at 3 moved box_tower_3d 0.97 → 1.07, so they stay at 2.5). The local solves
+  /// are in it (perf, brick_wall_2d: ~40 % of a 2D sweep). Problems given with W (FCLib) do
+  /// not sweep body records: their counts are unchanged.
   static double body_sweep(const LocalProblem& P, double record, bool dense) {
-    (void)dense;  // counted alike since i15-count (see above)
     const double nc = static_cast<double>(P.contacts());
-    const double sweep = 2.5 * (nc * (0.3 * record + (P.dim == 2 ? 5.0 : 15.0)) + 200);
+    const double sweep = (dense ? 2.5 : 3.0) * (nc * (0.3 * record + (P.dim == 2 ? 5.0 : 15.0)) + 200);
     const double bytes = record_bytes(P, record);
     return bytes > cache_bytes ? sweep * std::min(4.0, 1 + 1.5 * std::log2(bytes / cache_bytes)) : sweep;
   }
