@@ -77,9 +77,13 @@ TEST(LawExamples, BondedBeamIsDamagedFirstAtTheBottomOfMidSpan) {
   std::vector<std::size_t> order(damage.size());
   for (std::size_t c = 0; c < order.size(); ++c) order[c] = c;
   std::sort(order.begin(), order.end(), [&](auto a, auto b) { return damage[a] > damage[b]; });
-  ASSERT_GE(order.size(), 6u);
+  // Five, not six: the converged answer (`nlgs` or `auto` at 1e-6) has the five most damaged
+  // bonds in the bottom row (x = 0, ±0.020, ±0.040; D 0.84, 0.75, 0.54) and its sixth in the
+  // second row (x = 0.005, y = 0.011, D 0.39); which one the default 1e-3 ranks sixth depends
+  // on which member `auto` runs.
+  ASSERT_GE(order.size(), 5u);
   std::printf("bonded beam, step 800: most damaged bonds (x, y, D):");
-  for (std::size_t k = 0; k < 6; ++k) {
+  for (std::size_t k = 0; k < 5; ++k) {
     const std::size_t c = order[k];
     std::printf(" (%.4f, %.4f, %.3f)", point[2 * c], point[2 * c + 1], damage[c]);
     EXPECT_GT(damage[c], 0.3);
