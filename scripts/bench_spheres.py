@@ -11,7 +11,7 @@ the floor, so no step has a contact (only detection runs).
 
     python3 scripts/bench_spheres.py [--moreau build/bin/moreau] [--steps 20] [--large | --sizes 10000,100000]
                                      [--exchange auto,nlgs,apgd] [--tolerance 1e-4] [--timeout 600]
-                                     [--friction 0.3,0] [--layout touching,apart]
+                                     [--friction 0.3,0] [--layout touching,apart] [--cold]
 
 With MOREAU_STAGE_CLOCK=cpu in the environment the stage times are CPU times.
 """
@@ -78,6 +78,9 @@ def main():
     ap.add_argument("--timeout", type=float, default=0, help="seconds a run may take (0: no limit); a run over it is reported")
     ap.add_argument("--friction", default="0.3", help="friction coefficients to run (comma-separated)")
     ap.add_argument("--layout", default="touching", help="touching (contacts from the start) and/or apart (none)")
+    ap.add_argument("--cold", action="store_true",
+                    help="also run each case for 1 step and print the cold first step and the warm steps apart "
+                         "(warm solve ms/step = (solve of all steps - solve of the 1-step run) / (steps - 1))")
     a = ap.parse_args()
     sizes = [int(x) for x in a.sizes.split(",")] if a.sizes else [10_000] + ([100_000] if a.large else [])
     # ms/step: the whole step (every stage); solve ms/step and µs/contact: the solve stage
@@ -88,39 +91,56 @@ def main():
     runs = [(n, lay, float(mu), x) for n in sizes for lay in a.layout.split(",") for mu in a.friction.split(",")
             for x in a.exchange.split(",")]
     for n, layout, mu, exchange in runs:
-        with tempfile.TemporaryDirectory() as d:
-            h5 = os.path.join(d, "out.h5")
-            sp = os.path.join(d, "scene.json")
-            json.dump(scene(n, a.steps, h5, exchange, mu, layout, a.tolerance, a.sweeps), open(sp, "w"))
-            try:
-                out = subprocess.run([a.moreau, "run", sp], capture_output=True, text=True, timeout=a.timeout or None)
-            except subprocess.TimeoutExpired:
-                print(f"{n:>8} {layout:>8} {mu:>4g} {exchange:>8.24} did not finish {a.steps} steps in {a.timeout:g} s", flush=True)
+        r = run(a, n, layout, mu, exchange, a.steps)
+        if r is None:
+            print(f"{n:>8} {layout:>8} {mu:>4g} {exchange:>8.24} did not finish {a.steps} steps in {a.timeout:g} s", flush=True)
+            continue
+        total, solve, stages, detect, update = r["total"], r["solve"], r["stages"], r["detect"], r["update"]
+        # `auto`'s iterations mix sweeps with APGD steps: no sweep throughput for it.
+        rate = f"{r['updates'] / solve:>15.3g}" if r["updates"] and solve > 0 and exchange in ("w", "bodies") else f"{'-':>15}"
+        per_contact = 1e6 * solve / a.steps / r["mean_contacts"] if r["mean_contacts"] else 0.0
+        print(f"{n:>8} {layout:>8} {mu:>4g} {exchange:>8.24} {r['contacts']:>9} {sum(r['iterations']) / a.steps:>11.1f} "
+              f"{1000 * total / a.steps:>8.2f} {1000 * solve / a.steps:>13.2f} {per_contact:>16.2f} {r['worst']:>9.1e} {r['missed']:>6} "
+              f"{100 * detect / total:>8.1f} {100 * solve / total:>8.1f} "
+              f"{100 * update / total:>8.1f} {100 * stages.get('output', 0) / total:>8.1f} {rate}", flush=True)
+        if a.cold and a.steps > 1 and r["contacts"]:
+            c = run(a, n, layout, mu, exchange, 1)
+            if c is None:
+                print(f"{'':>8} cold step of {exchange} did not finish in {a.timeout:g} s", flush=True)
                 continue
-            if out.returncode != 0:
-                sys.exit(out.stderr)
-            stages = {m.group(1): float(m.group(2)) for m in re.finditer(r"^\s+(\w+)\s+([0-9.]+) s", out.stdout + out.stderr, re.M)}
-            total = stages["total"]
-            detect = sum(stages.get(s, 0) for s in ("detection_configuration", "broad_phase", "narrow_phase"))
-            update = sum(stages.get(s, 0) for s in ("free_velocity", "update_dofs", "end_step", "warm_start", "store_reactions"))
-            with h5py.File(h5) as f:
-                frames = [f["frames"][k] for k in sorted(f["frames"])][1:]
-                sweeps = sum(int(fr["solver"].attrs["iterations"]) for fr in frames)
-                updates = sum(int(fr["solver"].attrs["iterations"]) * len(fr["contacts/gap"]) for fr in frames)
-                contacts = len(frames[-1]["contacts/gap"])
-                mean_contacts = sum(len(fr["contacts/gap"]) for fr in frames) / len(frames)
-                worst = max(float(fr["solver"].attrs["error"]) for fr in frames)
-                missed = sum(float(fr["solver"].attrs["error"]) > a.tolerance for fr in frames)
-            # A sweep plus the error checks (one every `check_every` = 5 sweeps, each about a sweep).
-            solve = stages.get("solve", 0.0)
-            # `auto`'s iterations mix sweeps with APGD steps: no sweep throughput for it.
-            rate = f"{updates / solve:>15.3g}" if updates and solve > 0 and exchange in ("w", "bodies") else f"{'-':>15}"
-            per_contact = 1e6 * solve / a.steps / mean_contacts if mean_contacts else 0.0
-            print(f"{n:>8} {layout:>8} {mu:>4g} {exchange:>8.24} {contacts:>9} {sweeps / len(frames):>11.1f} "
-                  f"{1000 * total / a.steps:>8.2f} {1000 * solve / a.steps:>13.2f} {per_contact:>16.2f} {worst:>9.1e} {missed:>6} "
-                  f"{100 * detect / total:>8.1f} {100 * solve / total:>8.1f} "
-                  f"{100 * update / total:>8.1f} {100 * stages.get('output', 0) / total:>8.1f} {rate}", flush=True)
+            warm_solve = (solve - c["solve"]) / (a.steps - 1)
+            warm_it = sum(r["iterations"][1:]) / (a.steps - 1)
+            warm_contacts = sum(r["contacts_per_step"][1:]) / (a.steps - 1)
+            print(f"{'':>8}   cold step: {c['iterations'][0]} iterations, solve {1000 * c['solve']:.2f} ms "
+                  f"({1e6 * c['solve'] / c['contacts_per_step'][0]:.2f} us/contact); warm steps 2-{a.steps}: "
+                  f"{warm_it:.1f} iterations/step, solve {1000 * warm_solve:.2f} ms/step "
+                  f"({1e6 * warm_solve / warm_contacts:.2f} us/contact), worst error {max(r['errors'][1:]):.1e}", flush=True)
 
+
+def run(a, n, layout, mu, exchange, steps):
+    """One run of `steps` steps: stage times (s) and, per step, iterations, contacts and errors."""
+    with tempfile.TemporaryDirectory() as d:
+        h5 = os.path.join(d, "out.h5")
+        sp = os.path.join(d, "scene.json")
+        json.dump(scene(n, steps, h5, exchange, mu, layout, a.tolerance, a.sweeps), open(sp, "w"))
+        try:
+            out = subprocess.run([a.moreau, "run", sp], capture_output=True, text=True, timeout=a.timeout or None)
+        except subprocess.TimeoutExpired:
+            return None
+        if out.returncode != 0:
+            sys.exit(out.stderr)
+        stages = {m.group(1): float(m.group(2)) for m in re.finditer(r"^\s+(\w+)\s+([0-9.]+) s", out.stdout + out.stderr, re.M)}
+        with h5py.File(h5) as f:
+            frames = [f["frames"][k] for k in sorted(f["frames"])][1:]
+            iterations = [int(fr["solver"].attrs["iterations"]) for fr in frames]
+            contacts = [len(fr["contacts/gap"]) for fr in frames]
+            errors = [float(fr["solver"].attrs["error"]) for fr in frames]
+    return {"stages": stages, "total": stages["total"], "solve": stages.get("solve", 0.0),
+            "detect": sum(stages.get(s, 0) for s in ("detection_configuration", "broad_phase", "narrow_phase")),
+            "update": sum(stages.get(s, 0) for s in ("free_velocity", "update_dofs", "end_step", "warm_start", "store_reactions")),
+            "iterations": iterations, "contacts_per_step": contacts, "contacts": contacts[-1],
+            "mean_contacts": sum(contacts) / len(contacts), "updates": sum(i * c for i, c in zip(iterations, contacts)),
+            "worst": max(errors), "missed": sum(e > a.tolerance for e in errors), "errors": errors}
 
 if __name__ == "__main__":
     main()

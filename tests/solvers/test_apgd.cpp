@@ -22,3 +22,50 @@ TEST(Apgd, SharedFclibProblems) {
                         "spheres-in-a-box-98-i10000-256-10.hdf5", "CubeH8.hdf5"})
     fclib_case("apgd", f, 1e-8, 100000);
 }
+
+// The same checks with the step scaled per direction (`scaling: normal_tangent`: the
+// normal and the tangential diagonal entries of W apart, the cone projected in that metric).
+namespace {
+const std::string normal_tangent = "apgd:scaling=normal_tangent";
+}
+TEST(ApgdNormalTangent, OpenContactHasNoImpulse) { open_contact(normal_tangent); }
+TEST(ApgdNormalTangent, StickingAndSlidingIn2D) { stick_and_slide_2d(normal_tangent); }
+TEST(ApgdNormalTangent, StickingAndSlidingIn3D) { stick_and_slide_3d(normal_tangent); }
+TEST(ApgdNormalTangent, FrictionlessAndLargeFriction) { frictionless_and_large_friction(normal_tangent); }
+TEST(ApgdNormalTangent, TwoCoupledContacts) { two_coupled_contacts(normal_tangent); }
+TEST(ApgdNormalTangent, RedundantContactsStayFiniteAndHonest) { redundant_contacts(normal_tangent); }
+TEST(ApgdNormalTangent, MassRatio1e4AgreesWithNlgs) { mass_ratio(normal_tangent, 1e-8); }
+TEST(ApgdNormalTangent, RandomProblemsWithLargeFriction) { random_problems(normal_tangent, 1e-8, 6, 4, 1.0); }
+TEST(ApgdNormalTangent, NotConvergedIsReportedAsSuch) { not_converged(normal_tangent); }
+TEST(ApgdNormalTangent, WarmStartAndEdgeCases) { warm_start(normal_tangent); }
+
+TEST(ApgdNormalTangent, StickingAndSlidingWithTangentialEntriesLargerThanTheNormal) {
+  // One contact, W = diag(w_n, w_t, w_t) with w_t = 3.5 w_n (a sphere on the ground: its
+  // rotation adds to the tangential entries): the scaling differs per direction, so the
+  // cone must be projected in D's metric for the fixed point to be the Coulomb solution.
+  // r_n = −q_n / w_n; sticking r_T = −q_T / w_t when ‖q_T‖ ≤ μ r_n w_t, else sliding
+  // r_T = −μ r_n q_T / ‖q_T‖.
+  const std::vector<double> W3 = {1, 0, 0, 0, 3.5, 0, 0, 0, 3.5};
+  auto stick = solve(normal_tangent, problem(3, W3, {-1, 0.2, -0.1}, {0.3}));
+  EXPECT_NEAR(stick[0], 1, 1e-8);
+  EXPECT_NEAR(stick[1], -0.2 / 3.5, 1e-8);
+  EXPECT_NEAR(stick[2], 0.1 / 3.5, 1e-8);
+  auto slide = solve(normal_tangent, problem(3, W3, {-1, 3, -4}, {0.3}));
+  EXPECT_NEAR(slide[0], 1, 1e-8);
+  EXPECT_NEAR(slide[1], -0.18, 1e-8);
+  EXPECT_NEAR(slide[2], 0.24, 1e-8);
+  // 2D, w_t = 3 w_n, r_n = 2: sticks while |q_t| ≤ 0.3 · 2 · 3 = 1.8.
+  const std::vector<double> W2 = {1, 0, 0, 3};
+  auto stick2 = solve(normal_tangent, problem(2, W2, {-2, 1.5}, {0.3}));
+  EXPECT_NEAR(stick2[0], 2, 1e-8);
+  EXPECT_NEAR(stick2[1], -0.5, 1e-8);
+  auto slide2 = solve(normal_tangent, problem(2, W2, {-2, 3}, {0.3}));
+  EXPECT_NEAR(slide2[0], 2, 1e-8);
+  EXPECT_NEAR(slide2[1], -0.6, 1e-8);
+}
+
+TEST(ApgdNormalTangent, SharedFclibProblems) {
+  for (const char* f : {"fclib-local_problem_test.hdf5", "faf-Capsules-i97-269.hdf5", "faf-Box_Stacks-i0035-31-0.hdf5",
+                        "spheres-in-a-box-98-i10000-256-10.hdf5", "CubeH8.hdf5"})
+    fclib_case(normal_tangent, f, 1e-8, 100000);
+}

@@ -18,6 +18,10 @@ class ApgdSolver : public Solver {
     s.number("shrink", "the Lipschitz estimate is multiplied by this after each step (1: never shrinks)").gt(0).max(1).fallback(0.9);
     s.boolean("restart", "restart the extrapolation when a step goes uphill").fallback(true);
     s.integer("check_every", "steps between two evaluations of the error (the first step is always measured)").min(1).fallback(1);
+    s.string("scaling", "diagonal scaling of the step per contact: \"contact\" (one scalar, the mean of its diagonal of W) or "
+                        "\"normal_tangent\" (its normal diagonal entry and the mean of its tangential ones)")
+        .one_of({"contact", "normal_tangent"})
+        .fallback("contact");
     return s;
   }
   static constexpr const char* doc = "accelerated projected gradient with adaptive step and restart (De Saxce shift)";
@@ -28,6 +32,7 @@ class ApgdSolver : public Solver {
     o_.shrink = p.number("shrink");
     o_.restart = p.boolean("restart");
     o_.check_every = p.integer("check_every");
+    o_.scaling = p.string("scaling") == "normal_tangent" ? apgd::Scaling::normal_tangent : apgd::Scaling::contact;
   }
 
   /// From the time-stepper it multiplies through the factor W = H M⁻¹ Hᵀ: W is not built.

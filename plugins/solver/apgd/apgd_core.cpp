@@ -76,9 +76,15 @@ class WProduct {
 /// The hot loops of one APGD step, fused per contact (one pass each instead of one per
 /// vector operation: at 10⁴ spheres the vector passes cost as much as the products).
 /// The projected step from y along g (g = W y + q + De Saxcé shift, computed here when
-/// `with_g`): x⁺ = P_K(y − g / (L D_α)), dl = x⁺ − y; returns Σ D_α ‖dl_α‖².
-template <int D>
-double projected_step(Eigen::Index nc, const double* mu, const double* Dc, double invL, const double* y, const double* Wy,
+/// `with_g`): x⁺ = P_K(y − D⁻¹ g / L) with P_K the projection in D's metric,
+/// dl = x⁺ − y; returns Σ_α dl_αᵀ D_α dl_α.
+/// `Split` false: D_α is one scalar per contact, s[a], and P_K the Euclidean projection.
+/// `Split` true: D_α = diag(d_n, d_t, d_t), s[3a..3a+2] = (d_n, d_t, ρ = √(d_t / d_n)).
+/// In the coordinates (r_n, ρ r_t) the D-metric is Euclidean (up to the factor d_n) and the
+/// cone ‖r_t‖ ≤ μ r_n is the cone of coefficient μρ, so the projection stays exact: project
+/// (t_n, ρ t_t) on that cone, divide its tangential part by ρ.
+template <int D, bool Split>
+double projected_step(Eigen::Index nc, const double* mu, const double* s, double invL, const double* y, const double* Wy,
                       const double* q, bool with_g, double* g, double* xn, double* dl) {
   double rhs = 0;
   for (Eigen::Index a = 0; a < nc; ++a) {
@@ -88,19 +94,49 @@ double projected_step(Eigen::Index nc, const double* mu, const double* Dc, doubl
       g[o] += mu[a] * (D == 2 ? std::fabs(g[o + 1]) : std::sqrt(g[o + 1] * g[o + 1] + g[o + 2] * g[o + 2]));
     }
     double t[D], p[D];
-    const double c = invL / Dc[a];
-    for (int i = 0; i < D; ++i) t[i] = y[o + i] - c * g[o + i];
-    project_on_cone(D, mu[a], t, p);
-    double s = 0;
-    for (int i = 0; i < D; ++i) {
-      xn[o + i] = p[i];
-      const double e = p[i] - y[o + i];
-      dl[o + i] = e;
-      s += e * e;
+    if constexpr (Split) {
+      const double dn = s[3 * a], dt = s[3 * a + 1], rho = s[3 * a + 2];
+      const double cn = invL / dn, ct = invL / dt;
+      t[0] = y[o] - cn * g[o];
+      for (int i = 1; i < D; ++i) t[i] = rho * (y[o + i] - ct * g[o + i]);
+      project_on_cone(D, mu[a] * rho, t, p);
+      const double back = 1 / rho;
+      for (int i = 1; i < D; ++i) p[i] *= back;
+      double en = p[0] - y[o], et = 0;
+      xn[o] = p[0];
+      dl[o] = en;
+      for (int i = 1; i < D; ++i) {
+        xn[o + i] = p[i];
+        const double e = p[i] - y[o + i];
+        dl[o + i] = e;
+        et += e * e;
+      }
+      rhs += dn * en * en + dt * et;
+    } else {
+      const double c = invL / s[a];
+      for (int i = 0; i < D; ++i) t[i] = y[o + i] - c * g[o + i];
+      project_on_cone(D, mu[a], t, p);
+      double sum = 0;
+      for (int i = 0; i < D; ++i) {
+        xn[o + i] = p[i];
+        const double e = p[i] - y[o + i];
+        dl[o + i] = e;
+        sum += e * e;
+      }
+      rhs += s[a] * sum;
     }
-    rhs += Dc[a] * s;
   }
   return rhs;
+}
+
+/// projected_step for the problem's dimension and scaling.
+double projected_step(int d, bool split, Eigen::Index nc, const double* mu, const double* s, double invL, const double* y,
+                      const double* Wy, const double* q, bool with_g, double* g, double* xn, double* dl) {
+  if (d == 2)
+    return split ? projected_step<2, true>(nc, mu, s, invL, y, Wy, q, with_g, g, xn, dl)
+                 : projected_step<2, false>(nc, mu, s, invL, y, Wy, q, with_g, g, xn, dl);
+  return split ? projected_step<3, true>(nc, mu, s, invL, y, Wy, q, with_g, g, xn, dl)
+               : projected_step<3, false>(nc, mu, s, invL, y, Wy, q, with_g, g, xn, dl);
 }
 
 /// Wxn = Wy + Wd; returns gᵀ(x⁺ − x) (the restart test).
@@ -135,12 +171,13 @@ double extrapolate(Eigen::Index nc, const double* mu, double beta, const double*
 
 }  // namespace
 
-/// The products by W of one problem and what depends on W only: the scaling D (a scalar
-/// per contact, its mean diagonal of W) and the cost of a product. Packed once per
-/// problem, kept in State::products for later calls on the same problem.
+/// The products by W of one problem and what depends on W only: the scaling D (per
+/// contact: a scalar, its mean diagonal of W; or, `Scaling::normal_tangent`, its normal
+/// diagonal entry and the mean of its tangential ones) and the cost of a product. Packed
+/// once per problem, kept in State::products for later calls on the same problem.
 class Products {
  public:
-  explicit Products(const LocalProblem& P) : problem(&P), W(P) {
+  Products(const LocalProblem& P, Scaling scaling) : problem(&P), W(P), scaling(scaling) {
     const int d = P.dim;
     const Eigen::Index nc = P.contacts(), n = d * nc;
     const Eigen::VectorXd diag = W.diagonal();
@@ -148,22 +185,37 @@ class Products {
     for (Eigen::Index i = 0; i < n; ++i) mean_diag += diag[i];
     mean_diag /= static_cast<double>(n);
     if (!(mean_diag > 0)) mean_diag = 1;
-    Dc.resize(nc);
-    for (Eigen::Index a = 0; a < nc; ++a) {
-      double t = 0;
-      for (int k = 0; k < d; ++k) t += diag[a * d + k];
-      t /= d;
-      if (!(t > 1e-12 * mean_diag)) t = mean_diag;
-      Dc[a] = t;
+    // An entry that is not positive (a direction no body moves in) takes the mean diagonal.
+    const auto positive = [&](double t) { return t > 1e-12 * mean_diag ? t : mean_diag; };
+    if (split()) {
+      s.resize(3 * nc);
+      for (Eigen::Index a = 0; a < nc; ++a) {
+        double t = 0;
+        for (int k = 1; k < d; ++k) t += diag[a * d + k];
+        const double dn = positive(diag[a * d]), dt = positive(t / (d - 1));
+        s[3 * a] = dn;
+        s[3 * a + 1] = dt;
+        s[3 * a + 2] = std::sqrt(dt / dn);
+      }
+    } else {
+      s.resize(nc);
+      for (Eigen::Index a = 0; a < nc; ++a) {
+        double t = 0;
+        for (int k = 0; k < d; ++k) t += diag[a * d + k];
+        s[a] = positive(t / d);
+      }
     }
     cost = WorkCosts::of(P, W.through_factor());
     if (W.scaled()) cost.product = WorkCosts::scaled_factor_product(P);
   }
-  bool of(const LocalProblem& P) const { return problem == &P && Dc.size() == P.contacts(); }
+  bool of(const LocalProblem& P) const { return problem == &P && s.size() == (split() ? 3 : 1) * P.contacts(); }
+  bool of(const LocalProblem& P, Scaling sc) const { return scaling == sc && of(P); }
+  bool split() const { return scaling == Scaling::normal_tangent; }
 
   const LocalProblem* problem;
   WProduct W;
-  Eigen::VectorXd Dc;  ///< D per contact (its d entries are equal)
+  Scaling scaling;
+  Eigen::VectorXd s;  ///< the scaling D per contact (projected_step: 1 or 3 values a contact)
   WorkCosts cost;
 };
 
@@ -190,13 +242,14 @@ SolverReport solve(const LocalProblem& P, const Options& o, Eigen::VectorXd& r, 
     return rep;
   }
   std::unique_ptr<Products> kept;
-  const bool packed = o.state && o.same_problem && o.state->products && o.state->products->of(P);
+  const bool packed = o.state && o.same_problem && o.state->products && o.state->products->of(P, o.scaling);
   if (packed)
     kept = std::move(o.state->products);
   else
-    kept = std::make_unique<Products>(P);
+    kept = std::make_unique<Products>(P, o.scaling);
   WProduct& W = kept->W;
-  const Eigen::VectorXd& Dc = kept->Dc;
+  const double* scale = kept->s.data();
+  const bool split = kept->split();
   const WorkCosts& cost = kept->cost;
 
   Eigen::VectorXd x(n), Wx(n), y(n), Wy(n), xn(n), Wxn(n), g(n), dl(n), Wd(n), best;
@@ -232,8 +285,7 @@ SolverReport solve(const LocalProblem& P, const Options& o, Eigen::VectorXd& r, 
     bool ok = false;
     int backtracks = 0;
     for (int bt = 0; bt < 60; ++bt, ++backtracks) {
-      const double rhs = L * (d == 2 ? projected_step<2>(nc, mu, Dc.data(), 1 / L, y.data(), Wy.data(), q, bt == 0, g.data(), xn.data(), dl.data())
-                                     : projected_step<3>(nc, mu, Dc.data(), 1 / L, y.data(), Wy.data(), q, bt == 0, g.data(), xn.data(), dl.data()));
+      const double rhs = L * projected_step(d, split, nc, mu, scale, 1 / L, y.data(), Wy.data(), q, bt == 0, g.data(), xn.data(), dl.data());
       W.apply(dl, Wd);
       const double lhs = dl.dot(Wd);
       if (!std::isfinite(lhs)) break;

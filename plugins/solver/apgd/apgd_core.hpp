@@ -3,7 +3,8 @@
 // Saxcé-shifted problem  min ½ rᵀWr + (q + s)ᵀr  over r ∈ K, the shift s = μ‖u_T‖ e_n
 // recomputed at every step from the extrapolated point y:
 //   g = W y + q + s(y),   x⁺ = P_K(y − (1/L) D⁻¹ g)
-// with D a scalar per contact (its mean diagonal of W, which keeps P_K exact) and L found
+// with D diagonal per contact (Options::scaling: a scalar, its mean diagonal of W, or its
+// normal entry and its mean tangential one; P_K is the exact projection in D's metric) and L found
 // by backtracking on the quadratic bound ½dᵀWd ≤ (L/2) dᵀDd (L doubles; shrinks by 0.9
 // after each step). Extrapolation y = x⁺ + β(x⁺ − x) with the Nesterov sequence, restarted
 // (y = x⁺) when gᵀ(x⁺ − x) > 0 (O'Donoghue–Candès gradient restart). One product by W per
@@ -17,6 +18,12 @@
 namespace moreau::apgd {
 
 class Products;  // the products by W of one problem, packed (apgd_core.cpp)
+
+/// The diagonal scaling D of the gradient step, per contact.
+enum class Scaling {
+  contact,         ///< one scalar: the mean of the contact's diagonal entries of W
+  normal_tangent,  ///< diag(W_nn, w_t, …, w_t), w_t the mean of the tangential entries
+};
 
 /// Where a run stopped, so that a later call can continue it (`auto` runs APGD in slices).
 struct State {
@@ -42,6 +49,11 @@ struct Options {
   /// stops at a measured one. The error is a cone projection per contact, about a sixth
   /// of a step: at 10⁴ spheres, 3 gave 1.14× per step for 2 % more steps.
   long check_every = 1;
+  /// D per contact. `normal_tangent` scales the normal and the tangential directions apart
+  /// (a sphere's tangential entry, with its rotation, is 3.5 times its normal one, so one
+  /// scalar steps the normal 2.7 times shorter than it could); the projection on the cone
+  /// in D's metric stays exact (apgd_core.cpp, projected_step).
+  Scaling scaling = Scaling::contact;
   /// Work budget in products by W (0: none), checked after each iteration; the work done
   /// is added to *work when given (plugins/solver/work.hpp). Used by `auto`.
   double max_work = 0;
