@@ -109,12 +109,13 @@ def main():
                 print(f"{'':>8} cold step of {exchange} did not finish in {a.timeout:g} s", flush=True)
                 continue
             warm_solve = (solve - c["solve"]) / (a.steps - 1)
+            warm_assembly = (r["assembly"] - c["assembly"]) / (a.steps - 1)
             warm_it = sum(r["iterations"][1:]) / (a.steps - 1)
             warm_contacts = sum(r["contacts_per_step"][1:]) / (a.steps - 1)
             print(f"{'':>8}   cold step: {c['iterations'][0]} iterations, solve {1000 * c['solve']:.2f} ms "
                   f"({1e6 * c['solve'] / c['contacts_per_step'][0]:.2f} us/contact); warm steps 2-{a.steps}: "
                   f"{warm_it:.1f} iterations/step, solve {1000 * warm_solve:.2f} ms/step "
-                  f"({1e6 * warm_solve / warm_contacts:.2f} us/contact), worst error {max(r['errors'][1:]):.1e}", flush=True)
+                  f"({1e6 * warm_solve / warm_contacts:.2f} us/contact; of which W assembly {1000 * warm_assembly:.2f} ms), worst error {max(r['errors'][1:]):.1e}", flush=True)
 
 
 def run(a, n, layout, mu, exchange, steps):
@@ -130,12 +131,14 @@ def run(a, n, layout, mu, exchange, steps):
         if out.returncode != 0:
             sys.exit(out.stderr)
         stages = {m.group(1): float(m.group(2)) for m in re.finditer(r"^\s+(\w+)\s+([0-9.]+) s", out.stdout + out.stderr, re.M)}
+        m = re.search(r"\(of which W assembly\)\s+([0-9.]+) s", out.stdout + out.stderr)
+        assembly = float(m.group(1)) if m else 0.0
         with h5py.File(h5) as f:
             frames = [f["frames"][k] for k in sorted(f["frames"])][1:]
             iterations = [int(fr["solver"].attrs["iterations"]) for fr in frames]
             contacts = [len(fr["contacts/gap"]) for fr in frames]
             errors = [float(fr["solver"].attrs["error"]) for fr in frames]
-    return {"stages": stages, "total": stages["total"], "solve": stages.get("solve", 0.0),
+    return {"stages": stages, "assembly": assembly, "total": stages["total"], "solve": stages.get("solve", 0.0),
             "detect": sum(stages.get(s, 0) for s in ("detection_configuration", "broad_phase", "narrow_phase")),
             "update": sum(stages.get(s, 0) for s in ("free_velocity", "update_dofs", "end_step", "warm_start", "store_reactions")),
             "iterations": iterations, "contacts_per_step": contacts, "contacts": contacts[-1],

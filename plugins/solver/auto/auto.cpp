@@ -386,6 +386,11 @@ class Auto : public Solver {
     // There APGD's steps dominate: its error every 3 steps (10⁴ spheres: 1.14× per step).
     apgd_check_every_ = records_fit_ ? 1 : 3;
   }
+  /// APGD's step scaling (apgd_core.hpp): per direction (normal, tangential) where NLGS's
+  /// records exceed the caches (there APGD does the work; measured faster on 10⁴ and 10⁵
+  /// spheres, docs/solvers.md "Large problems"), one scalar per contact elsewhere: on the
+  /// example scenes and the FCLib corpus it was faster on some and slower on others.
+  apgd::Scaling apgd_scaling() const { return bodies_ && !records_fit_ ? apgd::Scaling::normal_tangent : apgd::Scaling::contact; }
   /// The start's error before the slices (nlgs_sweeps = 0, or records beyond the caches).
   /// Without NLGS's records APGD measures it (it packs its product for its first slice
   /// anyway; that slice then continues from it): one product instead of two.
@@ -397,6 +402,7 @@ class Auto : public Solver {
       o.work = &work_;
       o.state = &apgd_state_;
       o.recompute_error = false;
+      o.scaling = apgd_scaling();
       Eigen::VectorXd x = r;
       current_ = apgd_member;
       const SolverReport s = apgd::solve(*P_, o, x, u);
@@ -625,6 +631,7 @@ class Auto : public Solver {
         o.state = &apgd_state_;
         o.same_problem = apgd_slices_ > 0;  // its packed products are kept over the slices of a solve
         o.check_every = apgd_check_every_;
+        o.scaling = apgd_scaling();
         o.recompute_error = false;          // finish() recomputes the answer's error
         o.resume = apgd_slices_++ > 0 && best_by_ == apgd_member;  // its run goes on while it holds the best iterate
         s = apgd::solve(*P_, o, x, v);  // through the factor when W was not given
