@@ -488,3 +488,33 @@ TEST(ApgdFactored, NormalTangentSlicesWithKeptProductsAreOneRun) {
 }
 
 }  // namespace
+
+namespace {
+
+TEST(ApgdFactored, DiagonalInverseMassesArePackedAsTheGeneralOnes) {
+  // A diagonal inverse mass (spheres, disks) is split without the general Cholesky loop
+  // (scaled_factor.cpp): the product is W's to rounding, also with a locked direction (a
+  // zero diagonal entry); a negative entry is not semi-definite and is not packed.
+  for (int d : {2, 3}) {
+    auto P = varied_problem(d, 40, false);
+    auto& f = P.factor;
+    const int k = f.k;
+    for (int b : {4, 5})
+      for (int i = 0; i < k; ++i)
+        for (int j = 0; j < k; ++j) f.inverse_mass[static_cast<std::size_t>(b * k * k + i * k + j)] = i != j ? 0.0 : b == 5 && i == k - 1 ? 0.0 : 0.5 + i;
+    P.W = moreau::assemble_w(d, f);
+    moreau::apgd::ScaledFactor S;
+    ASSERT_TRUE(S.prepare(d, f));
+    std::mt19937 rng(40);
+    std::uniform_real_distribution<double> U(-1, 1);
+    const Eigen::VectorXd x = Eigen::VectorXd::NullaryExpr(P.q.size(), [&] { return U(rng); });
+    Eigen::VectorXd out;
+    S.multiply(x, out);
+    const Eigen::VectorXd want = P.W * x;
+    EXPECT_LT((out - want).norm(), 1e-13 * (1 + want.norm())) << "dim " << d;
+    f.inverse_mass[static_cast<std::size_t>(5 * k * k + (k - 1) * k + k - 1)] = -1e-3;
+    EXPECT_FALSE(S.prepare(d, f)) << "dim " << d;
+  }
+}
+
+}  // namespace

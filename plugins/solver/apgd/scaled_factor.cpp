@@ -11,12 +11,27 @@ namespace {
 /// matrix A, zero columns for zero pivots (a body locked in some directions has zero rows
 /// and columns in M⁻¹). False when L Lᵀ does not give A back to rounding (A indefinite, or
 /// semi-definite with a zero pivot on a coupled direction).
-bool semidefinite_cholesky(int k, const double* A, double* L) {
+/// `diagonal` is set when A is diagonal (a sphere's or a disk's inverse mass): L is then
+/// diagonal too (the same entries the general loop gives), and H L a scaling of H's columns.
+bool semidefinite_cholesky(int k, const double* A, double* L, bool& diagonal) {
   double scale = 0;
   for (int i = 0; i < k; ++i) scale = std::max(scale, std::fabs(A[i * k + i]));
   std::fill(L, L + k * k, 0.0);
+  diagonal = true;
+  for (int i = 0; i < k && diagonal; ++i)
+    for (int j = 0; j < k; ++j)
+      if (i != j && A[i * k + j] != 0) {
+        diagonal = false;
+        break;
+      }
   if (scale == 0) return true;  // a body impulses do not move
   const double tiny = 1e-14 * scale;
+  if (diagonal) {
+    for (int j = 0; j < k; ++j)
+      if (A[j * k + j] > tiny) L[j * k + j] = std::sqrt(A[j * k + j]);
+      else if (A[j * k + j] < -1e-12 * scale) return false;  // as the general check below
+    return true;
+  }
   for (int j = 0; j < k; ++j) {
     double p = A[j * k + j];
     for (int l = 0; l < j; ++l) p -= L[j * k + l] * L[j * k + l];
@@ -80,6 +95,7 @@ bool ScaledFactor::prepare(int d, const BodyFactor& f) {
   // Each moving body's L, computed once, numbered by first use.
   std::vector<int> compact(nb, -1);
   std::vector<double> L;
+  std::vector<char> diagonal;  // per moving body: L is diagonal
   body_.assign(2 * nc, -1);
   int next = 0;
   for (std::size_t s = 0; s < 2 * nc; ++s) {
@@ -88,8 +104,10 @@ bool ScaledFactor::prepare(int d, const BodyFactor& f) {
     if (compact[b] < 0) {
       compact[b] = next++;
       L.resize(static_cast<std::size_t>(next) * k * k);
-      if (!semidefinite_cholesky(k, &f.inverse_mass[static_cast<std::size_t>(b) * k * k], &L[static_cast<std::size_t>(compact[b]) * k * k]))
+      bool diag = false;
+      if (!semidefinite_cholesky(k, &f.inverse_mass[static_cast<std::size_t>(b) * k * k], &L[static_cast<std::size_t>(compact[b]) * k * k], diag))
         return false;
+      diagonal.push_back(diag ? 1 : 0);
     }
     body_[s] = compact[b];
   }
@@ -100,6 +118,11 @@ bool ScaledFactor::prepare(int d, const BodyFactor& f) {
     const double* h = &f.H[s * d * k];
     const double* l = &L[static_cast<std::size_t>(b) * k * k];
     double* out = &H_[s * d * k];
+    if (diagonal[static_cast<std::size_t>(b)]) {
+      for (int i = 0; i < d; ++i)
+        for (int j = 0; j < k; ++j) out[i * k + j] = h[i * k + j] * l[j * k + j];
+      continue;
+    }
     for (int i = 0; i < d; ++i)
       for (int j = 0; j < k; ++j) {
         double t = 0;
