@@ -196,23 +196,27 @@ Eigen::VectorXd ContactAssembly::local_velocity(const State& st, Velocity which)
   // contact side on it: a model looks its fields up by name at every call (10⁴ spheres:
   // 6·10⁴ sides on 10⁴ bodies, about 8 ms a step for the two calls of a step). The values,
   // and so u, are the same.
-  std::vector<std::vector<std::ptrdiff_t>> at(models_->size());  // per model: node → offset in `seen`, −1: not yet
-  std::vector<double> seen;
+  std::vector<double>& seen = velocity_seen_;
+  if (velocity_slot_.size() < models_->size()) velocity_slot_.resize(models_->size());
+  seen.clear();
+  const std::uint64_t call = ++velocity_call_;
   for (std::size_t a = 0; a < nc; ++a)
     for (int side = 0; side < 2; ++side) {
       const std::size_t s = 2 * a + side;
       const ContactModel& m = (*models_)[cs.model[s]];
       const int k = m.k;
-      std::vector<std::ptrdiff_t>& offset = at[static_cast<std::size_t>(cs.model[s])];
+      std::vector<VelocitySlot>& slots = velocity_slot_[static_cast<std::size_t>(cs.model[s])];
       for (int j = 0; j < cs.support_count(s); ++j) {
         const std::size_t n = cs.support_node(s, j);
-        if (n >= offset.size()) offset.resize(n + 1, -1);
-        if (offset[n] < 0) {
-          offset[n] = static_cast<std::ptrdiff_t>(seen.size());
+        if (n >= slots.size()) slots.resize(n + 1);
+        VelocitySlot& slot = slots[n];
+        if (slot.call != call) {
+          slot.call = call;
+          slot.at = seen.size();
           seen.resize(seen.size() + static_cast<std::size_t>(k));
-          m.model->generalised_velocity(st, which, n, &seen[static_cast<std::size_t>(offset[n])]);
+          m.model->generalised_velocity(st, which, n, &seen[slot.at]);
         }
-        const double* v = &seen[static_cast<std::size_t>(offset[n])];
+        const double* v = &seen[slot.at];
         const double* H = &H_[offset_[s] + static_cast<std::size_t>(j * d * k)];
         for (int i = 0; i < d; ++i) {
           double sum = 0;

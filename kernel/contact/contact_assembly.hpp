@@ -19,6 +19,7 @@
 // (same blocks, same sums in the same order). Otherwise W is always given.
 #include <Eigen/SparseCore>
 #include <cstddef>
+#include <cstdint>
 #include <moreau/contact_problem.hpp>
 #include <moreau/integrator.hpp>
 #include <moreau/modelization.hpp>
@@ -102,6 +103,16 @@ class ContactAssembly {
   std::vector<long> compact_;
   std::vector<double> inverse_;
   std::vector<char> compact_ok_;  ///< per body: its integrator gave a compact inverse
+  /// local_velocity's scratch, kept over the calls (a mesh's node table is not cleared for
+  /// a few contacts each call): per model and node, the call that asked its velocity and
+  /// where that is in velocity_seen_ (a slot of an earlier call is stale).
+  struct VelocitySlot {
+    std::uint64_t call = 0;
+    std::size_t at = 0;
+  };
+  mutable std::vector<std::vector<VelocitySlot>> velocity_slot_;
+  mutable std::vector<double> velocity_seen_;
+  mutable std::uint64_t velocity_call_ = 0;
 };
 
 }  // namespace moreau::kernel
