@@ -182,7 +182,6 @@ SolverReport Admm::solve(const LocalProblem& P, const Options& o, Eigen::VectorX
       const auto h = static_cast<long>(best_hist.size());
       if (h > o.stall_window && best_err > o.stall_factor * best_hist[h - 1 - o.stall_window]) break;
     }
-    if (meter.exhausted()) break;
     const double e = primal * primal + dual * dual;
     if (o.acceleration && e < o.restart * e_k) {
       const double tau = 0.5 * (1 + std::sqrt(1 + 4 * tau_k * tau_k));
@@ -217,6 +216,10 @@ SolverReport Admm::solve(const LocalProblem& P, const Options& o, Eigen::VectorX
         if (!factorise(rho)) break;
       }
     }
+    // The budget is checked once the step is complete (its extrapolation and penalty
+    // included), so that the state saved below resumes the run exactly where one run
+    // alone would go on: `auto`'s slices of ADMM are then one run.
+    if (meter.exhausted()) break;
   }
   state_ = State{z, zk, zh, xi, xik, xih, x, rho, tau_k, e_k};
   r = best;

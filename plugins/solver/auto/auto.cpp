@@ -45,6 +45,7 @@
 #include <vector>
 
 #include "../work.hpp"
+#include "floor.hpp"
 #include "admm_core.hpp"
 #include "apgd_core.hpp"
 #include "newton_core.hpp"
@@ -97,7 +98,8 @@ class Auto : public Solver {
   static Schema schema() {
     Schema s;
     s.number("tolerance", "target error (DESIGN §1; in a time step normalised by the approaching contacts)").gt(0).fallback(1e-3);
-    s.integer("max_iterations", "maximum iterations of each member (NLGS sweeps, APGD, Newton or ADMM steps)").min(1).fallback(20000);
+    s.integer("max_iterations", "maximum iterations of each member (NLGS sweeps, APGD or ADMM steps; Newton: newton_max_iterations)").min(1).fallback(20000);
+    s.integer("newton_max_iterations", "maximum steps of each of its Newton runs (as `newton`'s max_iterations; each step is a factorisation)").min(1).fallback(200);
     s.integer("nlgs_sweeps", "maximum sweeps of the first NLGS stage (0: start with the other members)").min(0).fallback(100000);
     s.integer("check_every", "NLGS sweeps between two evaluations of the error (as nlgs)").min(1).fallback(5);
     s.integer("direct_max_contacts", "above this many contacts, no sparse factorisation (Newton, ADMM)").min(0).fallback(1000);
@@ -110,6 +112,7 @@ class Auto : public Solver {
   Auto(const Params& p, const BuildContext&)
       : tol_(p.number("tolerance")), max_it_(p.integer("max_iterations")), nlgs_sweeps_(p.integer("nlgs_sweeps")),
         check_(p.integer("check_every")), direct_max_contacts_(p.integer("direct_max_contacts")),
+        newton_max_it_(p.integer("newton_max_iterations")),
         remember_(p.boolean("remember")) {}
 
   bool reads_matrix_with_factor() const override { return false; }
@@ -218,6 +221,7 @@ class Auto : public Solver {
     best_ = r;
     best_err_ = start_err;  // ∞ when not evaluated (r = 0 with approaching contacts)
     best_by_ = -1;
+    best_own_ = false;
     winner_ = -1;
     total_ = 0;
     work_ = std::isfinite(start_err) ? costs_.product + costs_.error : 0;  // the start's check
@@ -234,6 +238,14 @@ class Auto : public Solver {
     m[newton_start_member].available = direct;
     m[admm_member].available = direct;
     for (Member k : {newton_start_member, admm_member}) m[k].own_run = true;
+    nlgs_run_sweeps_ = 0;
+    own_ = {};
+    newton_step_ = 0;
+    floor_k_ = auto_floor::floor_k(direct ? 4 : 2);
+    // Problems given with W (FCLib): the floor from the first stage on. In a time step (W
+    // through the bodies) NLGS's first stage or the incumbent's slice is the first slice,
+    // the floor acting from the slices on (a step that NLGS finishes costs what `nlgs` costs).
+    first_stage_cap_ = bodies_ ? inf : floor_k_ * first_floor_step(direct);
 
     auto finish = [&]() {
       if (!std::isfinite(best_err_)) best_ = start_;  // no iterate was ever evaluated
@@ -297,6 +309,10 @@ class Auto : public Solver {
                      1e9 * (thread_seconds() - t0), best_err_, rate, total_, static_cast<long>(P_->q.size()),
                      static_cast<long>(P_->W.nonZeros()));
       account(ms, work_ - before, rate);
+      // From the warm start (a lost challenge restarts it there), as `nlgs` alone: the
+      // start of NLGS's own run for the floor (floor.hpp).
+      own_[nlgs_member] = OwnRun{x, work_ - before, total_ - before_it, ms.per_iteration, nlgs_run_sweeps_, 1, reached};
+      best_own_ = best_by_ == nlgs_member;
       if (best_err_ <= tol_) {
         winner_ = nlgs_member;
         return finish();
@@ -313,18 +329,157 @@ class Auto : public Solver {
     }
     if (!std::isfinite(best_err_)) return finish();
 
-    // 2. Slices that double, to the member expected to finish first.
+    // 2. Slices that double, to the member expected to finish first, under the floor.
     while (best_err_ > tol_) {
-      const int who = next_member(m, work_);
-      if (who < 0) break;
-      slice(m, who, probe_share(m, who) * work_, true);
+      if (!floor_slice(m)) break;
     }
     return finish();
   }
 
  private:
-  /// Newton's iterations are capped at 200: each costs a factorisation.
-  long member_max(int k) const { return k == newton_member || k == newton_start_member ? std::min<long>(max_it_, 200) : max_it_; }
+  /// The floor's view of the members (floor.hpp): NLGS's and APGD's own runs (OwnRun),
+  /// Newton's own run and ADMM (theirs are their slices of the rule too).
+  std::array<auto_floor::Run, member_count> floor_runs(const std::array<MemberState, member_count>& m) const {
+    std::array<auto_floor::Run, member_count> f{};
+    for (int k : {nlgs_member, apgd_member}) {
+      const OwnRun& o = own_[k];
+      f[k].in = o.iterations < max_it_;
+      f[k].spent = o.spent;
+      f[k].step = o.per_iteration > 0 ? o.per_iteration : k == nlgs_member ? costs_.sweep : costs_.product + costs_.error;
+    }
+    for (int k : {newton_start_member, admm_member}) {
+      const MemberState& s = m[k];
+      f[k].in = s.available && s.iterations < member_max(k);
+      f[k].spent = s.spent;
+      f[k].step = s.per_iteration > 0 ? s.per_iteration : newton_step_estimate();  // a factorisation
+    }
+    return f;
+  }
+  /// The least first iteration of a floor member other than NLGS: NLGS's first stage ends
+  /// once the work reaches K times it, as every choice of the slices does (floor.hpp).
+  double first_floor_step(bool direct) const {
+    double s = costs_.product + costs_.error;  // APGD's
+    if (direct) s = std::min(s, newton_step_estimate());  // ADMM's (Newton's probe is 4 of them)
+    return s;
+  }
+  /// One slice of rule 2. The rule picks a member and its slice (the least it takes: its
+  /// budget, at least 5 of its iterations, Newton's 4-step probe); a floor member that
+  /// would then be behind (total + slice)/K gets a slice of its own run first (the floor
+  /// pays ahead, so the rule's slice never takes the total past K·(w + s) of a floor run);
+  /// when the rule has none left, the floor member with the least work. False when every
+  /// floor member has used its iterations and the others are excluded: a floor member's
+  /// own run is never given up before its cap (a run that gains nothing for a while can
+  /// still converge: Newton on the mass-ratio pile), so auto reaches what a member reaches.
+  bool floor_slice(std::array<MemberState, member_count>& m) {
+    const auto runs = floor_runs(m);
+    bool any = false;
+    for (int k = 0; k < member_count; ++k) any = any || runs[k].in || !excluded(m[k], k);
+    if (!any) return false;
+    int who = next_member(m, work_);
+    double upcoming = 0;  // the least work of the rule's slice
+    int own = -1;         // the floor run that slice continues (Newton's own run, ADMM), if any
+    double budget = 0;
+    // NLGS or APGD picked while its own run holds the best iterate: the slice continues
+    // that run (it then counts for the floor too).
+    const bool continues_own = (who == nlgs_member || who == apgd_member) && best_own_ && best_by_ == who;
+    if (who >= 0) {
+      own = who == newton_start_member || who == admm_member || continues_own ? who : -1;
+      budget = probe_share(m, who) * work_;
+      const MemberState& ms = m[who];
+      const bool newton = who == newton_start_member || who == newton_member;
+      const double step = ms.per_iteration > 0 ? ms.per_iteration
+                          : newton || who == admm_member ? newton_step_estimate()
+                          : who == nlgs_member ? costs_.sweep
+                                               : costs_.product + costs_.error;
+      upcoming = newton && ms.slices == 0 ? 4 * step : std::max(5 * step, costs_.sweep);
+    }
+    auto floor_runs_but = runs;
+    if (own >= 0) floor_runs_but[own].in = false;  // its own run grows with the slice
+    const int f = auto_floor::behind(floor_runs_but, work_ + upcoming, floor_k_);
+    if (f >= 0 || who < 0) {
+      int k = f;
+      if (k < 0)  // the rule has none: the floor member with the least work
+        for (int i = 0; i < member_count; ++i)
+          if (runs[i].in && (k < 0 || runs[i].spent < runs[k].spent)) k = i;
+      if (k < 0) return false;
+      exploring_ = -1;
+      const double b = std::max((work_ + upcoming) / floor_k_ - runs[k].spent, runs[k].step);
+      if (k == nlgs_member || k == apgd_member)
+        own_slice(k, b);
+      else
+        slice(m, k, b, false);  // as many steps as fit (no probe of 4)
+      return true;
+    }
+    // Its budget: the rule's (the work spent so far, or a quarter for a probe), within the
+    // room the floor leaves (at least its least slice, which the floor has paid ahead for).
+    budget = std::max(std::min(budget, auto_floor::room(runs, work_, floor_k_, own)), upcoming);
+    if (continues_own)
+      own_slice(who, budget, &m[who]);
+    else
+      slice(m, who, budget, true);
+    return true;
+  }
+  /// A slice of NLGS's or APGD's own run (floor.hpp): from the warm start at first, then on
+  /// from where its last slice stopped, as the member alone (NLGS: its iterate and its
+  /// checks' schedule; APGD: its state, ApgdFactored.SlicesWithKeptProductsAreOneRun).
+  /// `ms`: the rule's view of the member, when the rule picked it (booked as its slice).
+  void own_slice(int k, double budget, MemberState* ms = nullptr) {
+    OwnRun& o = own_[k];
+    if (o.x.size() == 0) o.x = start_;
+    const double w0 = work_, t0 = trace_ ? thread_seconds() : 0;
+    const long it0 = total_;
+    const double before = best_err_, from = std::isfinite(o.err) ? o.err : best_err_;
+    double reached = inf, window_rate = 0;
+    current_ = k;
+    in_own_ = true;
+    if (k == nlgs_member) {
+      nlgs_run_sweeps_ = o.sweeps;
+      window_rate = run_nlgs(o.x, std::max<long>(1, max_it_ - o.iterations), budget, false, &reached);
+      o.sweeps = nlgs_run_sweeps_;
+    } else {
+      apgd::Options a;
+      a.tolerance = tol_;
+      a.max_iterations = std::max<long>(1, max_it_ - o.iterations);
+      a.max_work = budget;
+      a.work = &work_;
+      a.state = &own_apgd_state_;
+      a.same_problem = a.resume = o.slices > 0;
+      a.check_every = apgd_check_every_;
+      a.recompute_error = false;
+      Eigen::VectorXd v;
+      const SolverReport s = apgd::solve(*P_, a, o.x, v);
+      total_ += std::max<long>(s.iterations, 1);
+      keep(o.x, s.error);
+      if (bodies_ && best_err_ < before) {
+        best_u_ = v;
+        best_u_ok_ = true;
+      }
+      reached = s.error;
+    }
+    in_own_ = false;
+    ++o.slices;
+    o.iterations += total_ - it0;
+    o.spent += work_ - w0;
+    o.err = std::min(o.err, reached);
+    if (total_ > it0) o.per_iteration = (work_ - w0) / static_cast<double>(total_ - it0);
+    if (ms) {  // booked as the rule's slice of this member, as slice() does
+      const double took = work_ - w0, gain = reached < from ? std::log(from / reached) : 0.0;
+      ms->iterations += total_ - it0;
+      if (total_ > it0) ms->per_iteration = o.per_iteration;
+      account(*ms, took, k == nlgs_member ? window_rate : gain / std::max(took, 1e-12));
+      ms->fruitless = gain < std::log(1 / 0.99) ? ms->fruitless + 1 : 0;
+      if (best_err_ > tol_)
+        ms->need = ms->rate > 0 ? ms->spent + std::log(std::min(from, reached) / tol_) / ms->rate : 0;
+      else
+        winner_ = k;
+    }
+    if (trace_)
+      std::fprintf(stderr, "auto: floor, own %s, budget %.3g, took %.3g work (%.3g ns), reached %.2e, best %.2e, it %ld\n",
+                   member_name[k], budget, work_ - w0, 1e9 * (thread_seconds() - t0), reached, best_err_, total_);
+  }
+
+  /// Newton's steps are capped at newton_max_iterations: each costs a factorisation.
+  long member_max(int k) const { return k == newton_member || k == newton_start_member ? newton_max_it_ : max_it_; }
   bool excluded(const MemberState& s, int k) const {
     return !s.available || s.iterations >= member_max(k) || (s.slices >= 3 && s.fruitless >= 3);
   }
@@ -340,6 +495,7 @@ class Auto : public Solver {
     const Eigen::VectorXd kept = best_;
     Eigen::VectorXd x = start_;  // run_nlgs packs the records from it, or sets Δv from it
     current_ = nlgs_member;
+    nlgs_run_sweeps_ = 0;  // a run of its own
     best_err_ = inf;
     double reached = inf;
     run_nlgs(x, std::min(check_, max_it_), 0, false, &reached);
@@ -420,6 +576,7 @@ class Auto : public Solver {
       best_err_ = e;
       best_ = x;
       best_by_ = current_;
+      best_own_ = in_own_;
     }
   }
   /// The counted work of rule 0 when it answers from r: the start's error, and its product
@@ -491,7 +648,7 @@ class Auto : public Solver {
       ms.own = start_;
       if (std::isfinite(best_err_) && (best_ - start_).squaredNorm() == 0) ms.own_err = best_err_;
     }
-    if (ms.own_run && !std::isfinite(ms.own_err)) {  // its start's error, once
+    if (ms.own_run && !std::isfinite(ms.own_err) && (who == newton_start_member || who == admm_member)) {  // its start's error, once
       Eigen::VectorXd v;
       velocities(ms.own, v);
       ms.own_err = natural_map_error(*P_, ms.own, v);
@@ -499,19 +656,24 @@ class Auto : public Solver {
       keep(ms.own, ms.own_err);
     }
     Eigen::VectorXd x = ms.own_run ? ms.own : best_;
-    const double from = ms.own_run ? ms.own_err : best_err_;
+    const double from = ms.own_run && std::isfinite(ms.own_err) ? ms.own_err : best_err_;
     if (!ms.own_run && (x - start_).squaredNorm() != 0) ms.clean = false;
     const double t_start = work_, t0 = trace_ ? thread_seconds() : 0;
     double reached = inf;
     const long before_it = total_;
     const bool newton_probe = later && newton && ms.slices == 0;
-    const double window_rate = run_member(static_cast<Member>(who), x, newton_probe ? 0.0 : budget,
+    // A probe is 4 steps, but stops after the step that takes it past 6 estimated steps: a
+    // first step far above the estimate (a 3D LU with much more fill than W: the wet pile,
+    // 27 times) ends it there (floor.hpp: the slice over the floor's room stays one step).
+    const double probe_work = newton_probe ? 6 * newton_step_estimate() : 0.0;
+    const double window_rate = run_member(static_cast<Member>(who), x, newton_probe ? probe_work : budget,
                                           newton_probe ? std::min<long>(4, member_max(who) - ms.iterations)
                                                        : std::max<long>(1, member_max(who) - ms.iterations),
                                           &reached);
     ms.iterations += total_ - before_it;
     const double took = work_ - t_start;
     if (total_ > before_it) ms.per_iteration = took / static_cast<double>(total_ - before_it);
+    if (newton && ms.per_iteration > 0) newton_step_ = ms.per_iteration;  // measured on this problem
     const double gain = reached < from ? std::log(from / reached) : 0.0;
     if (trace_)
       std::fprintf(stderr, "auto: %s, budget %.3g, took %.3g work (%.3g ns), from %.2e reached %.2e, best %.2e, it %ld, n %ld nnz %ld\n",
@@ -554,8 +716,10 @@ class Auto : public Solver {
       else
         sweeper_.sweep(P, x, 1.0, order_);
       ++total_;
+      ++nlgs_run_sweeps_;
       work_ += costs_.sweep;
-      if (it != 1 && it % check_ != 0) continue;
+      // The error at its run's first sweep and every check_ (as `nlgs` alone, over slices).
+      if (nlgs_run_sweeps_ != 1 && nlgs_run_sweeps_ % check_ != 0) continue;
       velocities(x, v);
       work_ += costs_.product + costs_.error;
       const double e = natural_map_error(P, x, v);
@@ -574,6 +738,7 @@ class Auto : public Solver {
       const auto& b = hist_[h - 1];
       rate = b.t > a.t ? std::log(a.err / b.err) / (b.t - a.t) : 0;
       const double remaining = rate > 0 ? std::log(b.err / tol_) / rate : inf;
+      if (first && work_ >= first_stage_cap_) return rate;  // the floor (floor.hpp): another member is due
       if (first) {
         // Stay while finishing costs less than twice what has been spent (a switch could
         // not save more than that) or twice another member's remembered work: the factor
@@ -608,6 +773,7 @@ class Auto : public Solver {
     current_ = who;
     switch (who) {
       case nlgs_member:
+        nlgs_run_sweeps_ = 0;  // a run from the best iterate: its error at its first sweep
         return run_nlgs(x, budget, units, false, reached);
       case newton_member:
       case newton_start_member: {
@@ -742,6 +908,7 @@ class Auto : public Solver {
   /// The work of one Newton step on this problem: remembered, or from W's fill (its LU
   /// has 1.1 to 5 nnz(W) entries on the corpus, 1.5 typically: 2 taken here).
   double newton_step_estimate() const {
+    if (newton_step_ > 0) return newton_step_;  // measured in this solve
     if (memory_[newton_start_member].step > 0) return memory_[newton_start_member].step * nc_;
     const double nnz = bodies_ && P_->W.rows() == 0 ? 12.0 * P_->dim * P_->dim * nc_ : static_cast<double>(P_->W.nonZeros());
     const double n = P_->dim * nc_;
@@ -767,10 +934,28 @@ class Auto : public Solver {
   }
 
   int winner_ = -1;             ///< the member whose run reached the tolerance (−1: none)
+  long nlgs_run_sweeps_ = 0;    ///< sweeps of NLGS's own run in this solve (its checks' schedule)
+  double floor_k_ = 8;          ///< K of the floor (floor.hpp)
+  double newton_step_ = 0;      ///< the work of a Newton step measured in this solve (0: none yet)
+  /// NLGS's or APGD's own run for the floor (floor.hpp), beside the slices of the rule.
+  struct OwnRun {
+    Eigen::VectorXd x;         ///< its iterate (empty: the warm start)
+    double spent = 0;          ///< its work in this solve
+    long iterations = 0;
+    double per_iteration = 0;  ///< the work of one of its iterations
+    long sweeps = 0;           ///< NLGS: sweeps of the run (the schedule of its checks)
+    int slices = 0;            ///< APGD: its slices (the later ones resume its state)
+    double err = inf;          ///< its lowest error
+  };
+  bool in_own_ = false;         ///< an own run is running (own_slice)
+  bool best_own_ = false;       ///< best_ is an iterate of NLGS's or APGD's own run
+  std::array<OwnRun, 2> own_;   ///< NLGS's and APGD's (indices nlgs_member, apgd_member)
+  apgd::State own_apgd_state_;
+  double first_stage_cap_ = 0;  ///< the work at which the floor ends NLGS's first stage
   mutable int exploring_ = -1;  ///< the member next_member() picked to measure, not for its rate
   bool trace_ = std::getenv("MOREAU_AUTO_TRACE") != nullptr;
   double tol_;
-  long max_it_, nlgs_sweeps_, check_, direct_max_contacts_;
+  long max_it_, nlgs_sweeps_, check_, direct_max_contacts_, newton_max_it_;
   bool remember_;
   // Per solve.
   const LocalProblem* P_ = nullptr;

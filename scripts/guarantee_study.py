@@ -1,0 +1,136 @@
+#!/usr/bin/env python3
+"""The guarantee of `auto` checked on the whole corpus (docs/solvers.md "Guarantee").
+
+Makes the reduced corpus (scripts/corpus.py) unless --corpus holds one, then solves every
+problem (the shared FCLib files from r = 0, each exported problem cold and warm) at each
+tolerance with every member of `auto` (nlgs, apgd, newton, admm: each alone, with auto's
+caps) and with `auto`, once each, and compares counted work (`work` of `moreau fclib
+solve`, plugins/solver/work.hpp: sizes and iteration counts only, so the same on every
+run and machine). Exits 1 when a pair breaks the guarantee: a member reaches the tolerance
+and `auto` does not, or auto's work exceeds k times the least work of a member that
+reaches it.
+
+    python3 scripts/guarantee_study.py [--moreau build/bin/moreau] [--corpus build/corpus]
+        [--tolerances 1e-4 1e-8] [--k 8.3] [--jobs 2] [--csv build/guarantee.csv]
+
+About 2 minutes on 2 cores for the reduced corpus (129 problems).
+"""
+import argparse
+import concurrent.futures
+import json
+import os
+import statistics
+import subprocess
+import sys
+
+HERE = os.path.dirname(os.path.abspath(__file__))
+REPO = os.path.dirname(HERE)
+MEMBERS = ["nlgs", "apgd", "newton", "admm"]
+# auto's caps (its schema's fallbacks): max_iterations for NLGS, APGD and ADMM, Newton's own.
+MAX_ITER, NEWTON_MAX_ITER = 20000, 200
+
+
+def fail(msg):
+    print(f"guarantee_study: error: {msg}", file=sys.stderr)
+    sys.exit(2)
+
+
+def solve(moreau, path, warm, solver, tol):
+    cmd = [moreau, "fclib", "solve", path, "--solver", solver, "--tol", repr(tol)]
+    if solver == "newton":
+        cmd += ["--max-iter", str(NEWTON_MAX_ITER)]
+    else:
+        cmd += ["--max-iter", str(MAX_ITER)]
+    if warm:
+        cmd.append("--warm-start")
+    p = subprocess.run(cmd, capture_output=True, text=True)
+    if p.returncode != 0:
+        fail(f"`{' '.join(cmd)}` failed (exit {p.returncode}): {p.stderr.strip()[-300:]}")
+    line = json.loads(p.stdout.strip().splitlines()[-1])
+    return {"converged": bool(line["converged"]), "work": float(line["work"]), "error": line["error"]}
+
+
+def main():
+    ap = argparse.ArgumentParser(description=__doc__.split("\n\n")[0])
+    ap.add_argument("--moreau", default=os.path.join(REPO, "build", "bin", "moreau"))
+    ap.add_argument("--corpus", default=os.path.join(REPO, "build", "corpus"),
+                    help="a corpus made by scripts/corpus.py (made there, reduced, if it has no problems/)")
+    ap.add_argument("--shared", default=os.path.join(os.path.dirname(REPO), "shared", "fclib"),
+                    help="the shared FCLib files (skipped if the folder does not exist)")
+    ap.add_argument("--tolerances", nargs="+", type=float, default=[1e-4, 1e-8])
+    ap.add_argument("--k", type=float, default=8.3, help="the stated k (docs/solvers.md \"Guarantee\")")
+    ap.add_argument("--jobs", type=int, default=2)
+    ap.add_argument("--csv", help="write every pair's figures there")
+    a = ap.parse_args()
+    if not os.path.exists(a.moreau):
+        fail(f"no moreau executable at {a.moreau}")
+    if a.jobs < 1 or a.k <= 0:
+        fail("--jobs and --k must be positive")
+    problems_dir = os.path.join(a.corpus, "problems")
+    if not os.path.isdir(problems_dir):
+        subprocess.run([sys.executable, os.path.join(HERE, "corpus.py"), "--size", "reduced", "--moreau", a.moreau,
+                        "--out", a.corpus], check=True, stdout=subprocess.DEVNULL)
+    cases = []
+    if os.path.isdir(a.shared):
+        cases += [(os.path.join(a.shared, f), False) for f in sorted(os.listdir(a.shared)) if f.endswith(".hdf5")]
+    for f in sorted(os.listdir(problems_dir)):
+        if f.endswith(".hdf5"):
+            cases += [(os.path.join(problems_dir, f), False), (os.path.join(problems_dir, f), True)]
+    if not cases:
+        fail(f"no problems in {problems_dir}")
+
+    jobs = [(c, tol, s) for c in cases for tol in a.tolerances for s in MEMBERS + ["auto"]]
+    with concurrent.futures.ThreadPoolExecutor(a.jobs) as pool:
+        results = list(pool.map(lambda j: solve(a.moreau, j[0][0], j[0][1], j[2], j[1]), jobs))
+    by = {(j[0], j[1], j[2]): r for j, r in zip(jobs, results)}
+
+    broken, rows = [], []
+    for tol in a.tolerances:
+        ratios, dominant, some, by_auto = [], [], 0, 0
+        for c in cases:
+            name = os.path.basename(c[0])[:-5] + ("+warm" if c[1] else "")
+            reached = sorted((by[(c, tol, m)]["work"], m) for m in MEMBERS if by[(c, tol, m)]["converged"])
+            au = by[(c, tol, "auto")]
+            by_auto += au["converged"]
+            row = {"problem": name, "tolerance": tol, "auto_work": au["work"], "auto_converged": au["converged"],
+                   "least": reached[0][1] if reached else "", "least_work": reached[0][0] if reached else "",
+                   "ratio": ""}
+            if reached:
+                some += 1
+                ratio = au["work"] / reached[0][0]
+                row["ratio"] = f"{ratio:.4g}"
+                row["raw"] = ratio
+                if not au["converged"]:
+                    broken.append(f"{name} at {tol:g}: {reached[0][1]} reaches it, auto stops at {au['error']:.3g}")
+                else:
+                    ratios.append(ratio)
+                    if len(reached) == 1 or reached[0][0] <= 0.5 * reached[1][0]:
+                        dominant.append(ratio)
+                if ratio > a.k:
+                    broken.append(f"{name} at {tol:g}: auto's work {au['work']:.4g} is {ratio:.2f}x {reached[0][1]}'s "
+                                  f"{reached[0][0]:.4g} (k {a.k:g})")
+            rows.append(row)
+        ratios.sort()
+        worst = max(ratios) if ratios else 0
+        worst_of = next((r["problem"] for r in rows if r["tolerance"] == tol and r.get("raw") == worst), "")
+        within = lambda k, rs=ratios: sum(x <= k for x in rs)
+        print(f"tolerance {tol:g}: {len(cases)} problems, {some} reached by some member, {by_auto} by auto; "
+              f"counted work auto / least member: median {statistics.median(ratios) if ratios else 0:.2f}, "
+              f"worst {worst:.2f} ({worst_of}); within 1x {within(1)}, 1.5x {within(1.5)}, 2x {within(2)}, "
+              f"{a.k:g}x {within(a.k)} of {len(ratios)}; where one member dominates (under half the next): "
+              f"{len(dominant)} pairs, worst {max(dominant) if dominant else 0:.2f}, within 1x {within(1, dominant)}, "
+              f"1.5x {within(1.5, dominant)}")
+    if a.csv:
+        with open(a.csv + ".tmp", "w") as f:
+            f.write("problem,tolerance,least,least_work,auto_work,auto_converged,ratio\n")
+            for r in rows:
+                f.write(f"{r['problem']},{r['tolerance']:g},{r['least']},{r['least_work']},{r['auto_work']},"
+                        f"{str(r['auto_converged']).lower()},{r['ratio']}\n")
+        os.replace(a.csv + ".tmp", a.csv)
+    for b in broken:
+        print("BROKEN: " + b)
+    sys.exit(1 if broken else 0)
+
+
+if __name__ == "__main__":
+    main()
