@@ -192,7 +192,7 @@ std::unique_ptr<moreau::Solver> auto_solver(long nlgs_sweeps, long direct_max_co
   return moreau_test::create<moreau::Solver>(
       "auto",
       {{"tolerance", 1e-11}, {"max_iterations", 20000}, {"nlgs_sweeps", nlgs_sweeps}, {"check_every", 5},
-       {"direct_max_contacts", direct_max_contacts}, {"remember", true}},
+       {"direct_max_contacts", direct_max_contacts}, {"newton_max_iterations", 200}, {"remember", true}},
       moreau::BuildContext{});
 }
 

@@ -27,8 +27,11 @@
 //    start as each would alone (Newton with its line search's memory), since Newton from
 //    NLGS's iterate can crawl.
 // 3. The answer is the best iterate of all; the solve ends at the tolerance, when every
-//    member has used `max_iterations` of its own (Newton at most 200), or had three slices
-//    in a row that gained less than 1 %.
+//    member has used `max_iterations` of its own (Newton at most `newton_max_iterations`),
+//    or (in a time step) had three slices in a row that gained less than 1 %. For a problem
+//    given with W, a floor under the slices (floor.hpp) bounds auto's work by K times the
+//    least member's (+ one of its iterations and one slice) and gives up no member's own run
+//    before its cap, so auto reaches whatever a member reaches alone.
 // docs/solvers.md states the rule and the guarantee measured on the corpus.
 #include <time.h>
 
@@ -98,7 +101,7 @@ class Auto : public Solver {
   static Schema schema() {
     Schema s;
     s.number("tolerance", "target error (DESIGN §1; in a time step normalised by the approaching contacts)").gt(0).fallback(1e-3);
-    s.integer("max_iterations", "maximum iterations of each member (NLGS sweeps, APGD or ADMM steps; Newton: newton_max_iterations)").min(1).fallback(20000);
+    s.integer("max_iterations", "maximum iterations of each member (NLGS sweeps, APGD, Newton or ADMM steps)").min(1).fallback(20000);
     s.integer("newton_max_iterations", "maximum steps of each of its Newton runs (as `newton`'s max_iterations; each step is a factorisation)").min(1).fallback(200);
     s.integer("nlgs_sweeps", "maximum sweeps of the first NLGS stage (0: start with the other members)").min(0).fallback(100000);
     s.integer("check_every", "NLGS sweeps between two evaluations of the error (as nlgs)").min(1).fallback(5);
@@ -487,8 +490,10 @@ class Auto : public Solver {
                    member_name[k], budget, work_ - w0, 1e9 * (thread_seconds() - t0), reached, best_err_, total_);
   }
 
-  /// Newton's steps are capped at newton_max_iterations: each costs a factorisation.
-  long member_max(int k) const { return k == newton_member || k == newton_start_member ? newton_max_it_ : max_it_; }
+  /// Newton's steps are capped at newton_max_iterations too: each costs a factorisation.
+  long member_max(int k) const {
+    return k == newton_member || k == newton_start_member ? std::min(max_it_, newton_max_it_) : max_it_;
+  }
   bool excluded(const MemberState& s, int k) const {
     return !s.available || s.iterations >= member_max(k) || (s.slices >= 3 && s.fruitless >= 3);
   }
