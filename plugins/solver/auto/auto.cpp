@@ -662,7 +662,7 @@ class Auto : public Solver {
       ms.own = start_;
       if (std::isfinite(best_err_) && (best_ - start_).squaredNorm() == 0) ms.own_err = best_err_;
     }
-    if (ms.own_run && !std::isfinite(ms.own_err) && (who == newton_start_member || who == admm_member)) {  // its start's error, once
+    if (ms.own_run && !std::isfinite(ms.own_err)) {  // its start's error, once
       Eigen::VectorXd v;
       velocities(ms.own, v);
       ms.own_err = natural_map_error(*P_, ms.own, v);
@@ -670,7 +670,7 @@ class Auto : public Solver {
       keep(ms.own, ms.own_err);
     }
     Eigen::VectorXd x = ms.own_run ? ms.own : best_;
-    const double from = ms.own_run && std::isfinite(ms.own_err) ? ms.own_err : best_err_;
+    const double from = ms.own_run ? ms.own_err : best_err_;
     if (!ms.own_run && (x - start_).squaredNorm() != 0) ms.clean = false;
     const double t_start = work_, t0 = trace_ ? thread_seconds() : 0;
     double reached = inf;
