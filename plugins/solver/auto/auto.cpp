@@ -457,6 +457,7 @@ class Auto : public Solver {
       a.state = &own_apgd_state_;
       a.same_problem = a.resume = o.slices > 0;
       a.check_every = apgd_check_every_;
+      a.scaling = apgd_scaling();  // with W given: one scalar per contact, as `apgd` alone
       a.recompute_error = false;
       Eigen::VectorXd v;
       const SolverReport s = apgd::solve(*P_, a, o.x, v);
