@@ -8,9 +8,12 @@ every solver once before round r + 1) and the table gives medians over --repeat 
 the solve stage's seconds per step (from `moreau run`'s stage table), the steps whose solve
 missed the tolerance (from the end-of-run summary), and auto over the best member.
 
-    python3 scripts/bench_scenes.py [--moreau build/bin/moreau] [--steps 1000] [--repeat 3]
-        [--solvers auto nlgs newton admm apgd] [--only NAME ...] [--tolerance X] [--cpu | --stage-cpu]
-        [--out build/bench_scenes]
+    python3 scripts/bench_scenes.py [--moreau build/bin/moreau] [--steps 1000 | --full-length] [--repeat 3]
+        [--solvers auto nlgs newton admm apgd] [--only NAME ...] [--skip NAME ...] [--tolerance X]
+        [--cpu | --stage-cpu] [--out build/bench_scenes]
+
+--full-length runs every scene over its whole duration (its own number of steps: the issue's
+silo 5000, silo_janssen_2d 4500, masonry_arch_2d 6000, ...) instead of the first --steps.
 
 A solver may carry parameters: `auto/remember=false` (JSON values after `=`, comma-separated).
 
@@ -98,6 +101,8 @@ def main():
     ap = argparse.ArgumentParser(description=__doc__.split("\n\n")[0], formatter_class=argparse.RawDescriptionHelpFormatter)
     ap.add_argument("--moreau", default=os.path.join(REPO, "build", "bin", "moreau"))
     ap.add_argument("--steps", type=int, default=1000, help="steps per run (at most the scene's own)")
+    ap.add_argument("--full-length", action="store_true", help="each scene's whole run (its own number of steps), not --steps")
+    ap.add_argument("--skip", nargs="+", default=[], metavar="NAME", help="scenes not to run")
     ap.add_argument("--repeat", type=int, default=3)
     ap.add_argument("--solvers", nargs="+", default=["auto", "nlgs", "newton", "admm", "apgd"])
     ap.add_argument("--only", nargs="+", metavar="NAME")
@@ -109,7 +114,9 @@ def main():
     a = ap.parse_args()
     moreau = os.path.abspath(a.moreau)
     all_scenes = scenes(a.steps)
-    names = a.only or list(all_scenes)
+    names = [n for n in a.only or list(all_scenes) if n not in a.skip]
+    if a.full_length:
+        a.steps = 10 ** 9  # run() takes the scene's own number of steps
     os.makedirs(a.out, exist_ok=True)
     rows = []
     hdr = f"{'scene':24s} {'tol':>7s} {'steps':>5s} " + " ".join(f"{s + ' ms':>12s}" for s in a.solvers) + \

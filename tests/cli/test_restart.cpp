@@ -132,7 +132,7 @@ TEST(Restart, AutosMemoryIsSavedWithEachFrameAndRestored) {
   const std::string rest = (dir / "rest.h5").string();
   expect_same_frame(full, rest, "00000300");
   for (const char* f : {"contacts/impulse", "solver/solves", "solver/member_cost", "solver/member_iteration",
-                        "solver/member_next_try", "solver/member_try_interval"}) {
+                        "solver/member_next_try", "solver/member_try_interval", "solver/at_rest"}) {
     const auto a = read_doubles(full, std::string("/frames/00000300/") + f), b = read_doubles(rest, std::string("/frames/00000300/") + f);
     ASSERT_EQ(a.size(), b.size()) << f;
     ASSERT_FALSE(a.empty()) << f;
@@ -144,7 +144,7 @@ TEST(Restart, AutosMemoryIsSavedWithEachFrameAndRestored) {
   fs::copy_file(part, old);
   {
     hid_t f = H5Fopen(old.c_str(), H5F_ACC_RDWR, H5P_DEFAULT);
-    for (const char* n : {"solves", "member_cost", "member_iteration", "member_next_try", "member_try_interval"})
+    for (const char* n : {"solves", "member_cost", "member_iteration", "member_next_try", "member_try_interval", "at_rest"})
       ASSERT_GE(H5Ldelete(f, (std::string("/frames/00000150/solver/") + n).c_str(), H5P_DEFAULT), 0) << n;
     H5Fclose(f);
   }

@@ -61,6 +61,6 @@ TEST(AutoMemory, LoadedIntoAnotherInstanceTheLaterSolvesAreBitIdentical) {
 
 TEST(AutoMemory, WithoutRememberAutoKeepsNoState) {
   EXPECT_TRUE(make("auto", {{"remember", false}})->state_fields(2).empty());
-  EXPECT_EQ(make("auto", {{"remember", true}})->state_fields(2).size(), 5u);
+  EXPECT_EQ(make("auto", {{"remember", true}})->state_fields(2).size(), 6u);
   EXPECT_TRUE(make("nlgs")->state_fields(3).empty());
 }
