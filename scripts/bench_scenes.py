@@ -10,7 +10,7 @@ missed the tolerance (from the end-of-run summary), and auto over the best membe
 
     python3 scripts/bench_scenes.py [--moreau build/bin/moreau] [--steps 1000 | --full-length] [--repeat 3]
         [--solvers auto nlgs newton admm apgd] [--only NAME ...] [--skip NAME ...] [--tolerance X]
-        [--cpu | --stage-cpu] [--out build/bench_scenes]
+        [--cpu | --stage-cpu] [--timeout SECONDS] [--out build/bench_scenes]
 
 --full-length runs every scene over its whole duration (its own number of steps: the issue's
 silo 5000, silo_janssen_2d 4500, masonry_arch_2d 6000, ...) instead of the first --steps.
@@ -76,7 +76,7 @@ def child_cpu():
     return r.ru_utime + r.ru_stime
 
 
-def run(moreau, scene, name, steps, tmp, tolerance=None, cpu=False, stage_cpu=False):
+def run(moreau, scene, name, steps, tmp, tolerance=None, cpu=False, stage_cpu=False, timeout=None):
     s = json.loads(json.dumps(scene))
     s["solver"], tol = solver_block(scene, name, tolerance)
     path = os.path.join(tmp, "scene.json")
@@ -84,8 +84,12 @@ def run(moreau, scene, name, steps, tmp, tolerance=None, cpu=False, stage_cpu=Fa
     total = round(s["time"]["duration"] / s["time"]["step"])
     n = min(steps, total)
     c0 = child_cpu()
-    p = subprocess.run([moreau, "run", path, "--out", os.path.join(tmp, "out.h5"), "--steps", str(n)],
-                       capture_output=True, text=True, env=dict(os.environ, MOREAU_STAGE_CLOCK="cpu") if stage_cpu else None)
+    try:
+        p = subprocess.run([moreau, "run", path, "--out", os.path.join(tmp, "out.h5"), "--steps", str(n)], capture_output=True,
+                           text=True, env=dict(os.environ, MOREAU_STAGE_CLOCK="cpu") if stage_cpu else None, timeout=timeout)
+    except subprocess.TimeoutExpired as e:  # the progress line says how far it got
+        done = re.findall(r"step (\d+)/", (e.stderr or b"").decode(errors="replace") if isinstance(e.stderr, bytes) else e.stderr or "")
+        return {"error": f"timeout after {timeout:g} s" + (f" at step {done[-1]} of {n}" if done else "")}
     used = child_cpu() - c0
     if p.returncode != 0:
         return {"error": p.stderr.strip().splitlines()[-1] if p.stderr.strip() else f"exit {p.returncode}"}
@@ -103,6 +107,7 @@ def main():
     ap.add_argument("--steps", type=int, default=1000, help="steps per run (at most the scene's own)")
     ap.add_argument("--full-length", action="store_true", help="each scene's whole run (its own number of steps), not --steps")
     ap.add_argument("--skip", nargs="+", default=[], metavar="NAME", help="scenes not to run")
+    ap.add_argument("--timeout", type=float, help="seconds after which a run is stopped (reported as 'timeout')")
     ap.add_argument("--repeat", type=int, default=3)
     ap.add_argument("--solvers", nargs="+", default=["auto", "nlgs", "newton", "admm", "apgd"])
     ap.add_argument("--only", nargs="+", metavar="NAME")
@@ -127,7 +132,7 @@ def main():
             results = {s: [] for s in a.solvers}
             for _ in range(a.repeat):  # interleaved: each round runs every solver once
                 for sv in a.solvers:
-                    results[sv].append(run(moreau, all_scenes[name], sv, a.steps, tmp, a.tolerance, a.cpu, a.stage_cpu))
+                    results[sv].append(run(moreau, all_scenes[name], sv, a.steps, tmp, a.tolerance, a.cpu, a.stage_cpu, a.timeout))
             med, misses = {}, {}
             for sv, rs in results.items():
                 good = [r for r in rs if "error" not in r]
@@ -138,15 +143,20 @@ def main():
             autos = [sv for sv in a.solvers if sv.startswith("auto")]  # each variant over the best member
             ratios = {sv: med[sv] / members[best] if best and med.get(sv) else None for sv in autos}
             ratio = ratios[autos[0]] if autos else None
-            first = next(r for rs in results.values() for r in rs if "error" not in r)
-            cells = " ".join(f"{'fail' if med[s] is None else f'{1e3 * med[s]:.3f}':>12s}" for s in a.solvers)
+            first = next((r for rs in results.values() for r in rs if "error" not in r), {"tol": a.tolerance or 0, "steps": 0})
+            errors = {sv: next((r["error"] for r in rs if "error" in r), None) for sv, rs in results.items()}
+            cells = " ".join(f"{('timeout' if (errors[s] or '').startswith('timeout') else 'fail') if med[s] is None else f'{1e3 * med[s]:.3f}':>12s}"
+                             for s in a.solvers)
             miss_txt = ", ".join(f"{s} {m[0]} (worst {m[1]:.1e})" for s, m in misses.items() if m and m[0])
             print(f"{name:24s} {first['tol']:7.0e} {first['steps']:5d} {cells} {best or '-':>12s} "
                   f"{' '.join('-' if x is None else f'{x:.2f}' for x in ratios.values()):>9s}  {miss_txt}", flush=True)
             rows.append({"scene": name, "tolerance": first["tol"], "steps": first["steps"],
                          "ms_per_step": {s: None if t is None else 1e3 * t for s, t in med.items()},
                          "misses": {s: m for s, m in misses.items()}, "best_member": best, "auto_over_best": ratio,
-                         "over_best": ratios})
+                         "over_best": ratios, "errors": {s: e for s, e in errors.items() if e}})
+            for sv, e in errors.items():
+                if e:
+                    print(f"  {sv}: {e}", flush=True)
     json.dump(rows, open(os.path.join(a.out, "bench_scenes.json"), "w"), indent=1)
     print(f"wrote {a.out}/bench_scenes.json")
 

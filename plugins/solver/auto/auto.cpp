@@ -843,10 +843,7 @@ class Auto : public Solver {
         limits(o);
         o.last = &last_;
         if (who == newton_start_member) o.merits = &newton_merits_;  // its own run goes on as one run
-        const double scale = newton_scale(), w0 = work_;
-        o.max_work = units / scale;
         s = newton_.solve(with_w(), o, x, v);
-        work_ = w0 + scale * (work_ - w0);
         break;
       }
       case admm_member: {
@@ -977,16 +974,8 @@ class Auto : public Solver {
     if (memory_[newton_start_member].step > 0) return memory_[newton_start_member].step * nc_;
     const double nnz = bodies_ && P_->W.rows() == 0 ? 12.0 * P_->dim * P_->dim * nc_ : static_cast<double>(P_->W.nonZeros());
     const double n = P_->dim * nc_;
-    return newton_scale() * (WorkCosts::assembly(nnz, n) + WorkCosts::factorisation(nnz, nnz, n)) + 3 * costs_.product;
+    return WorkCosts::assembly(nnz, n) + WorkCosts::factorisation(nnz, nnz, n) + 3 * costs_.product;
   }
-
-  /// In a time step (W through the bodies) a Newton step counts twice the model's work: there
-  /// the members' counted work is compared with NLGS's and APGD's through the bodies, which
-  /// took 0.4–0.6 CPU ns per counted unit in auto's traces (issue-15 silo, silo_janssen_2d,
-  /// `MOREAU_AUTO_TRACE`; ADMM 0.5–0.6) against 1.0 for Newton's steps: counted at par, Newton
-  /// looked as cheap as APGD on silo_janssen_2d's lowering phase and took 40 % of the run's
-  /// time there. Problems given with W (FCLib, the guarantee) count as before.
-  double newton_scale() const { return bodies_ ? 2.0 : 1.0; }
 
   /// After a solve: each member's remembered work per contact follows what this solve showed
   /// (exponential average): the work of the member that converged, or the work extrapolated
