@@ -2,6 +2,7 @@
 // (Solver::state_fields): saved into the `solver` set and loaded into another instance,
 // the later solves are bit-identical to those of the instance that learnt it.
 #include <cmath>
+#include <random>
 
 #include "solver_cases.hpp"
 
@@ -22,7 +23,90 @@ std::vector<double> values(const moreau::EntitySet& set) {
   return v;
 }
 
+/// A problem as the time-stepper gives it: the factor W = H M⁻¹ Hᵀ only (W not built).
+moreau::LocalProblem factored(int d, int bodies, int nc, double mu, unsigned seed) {
+  std::mt19937 rng(seed);
+  std::uniform_real_distribution<double> U(-1, 1);
+  const int k = d == 2 ? 3 : 6;
+  moreau::LocalProblem p;
+  p.dim = d;
+  p.factor.k = k;
+  p.factor.inverse_mass.assign(static_cast<std::size_t>(bodies * k * k), 0.0);
+  for (int b = 0; b < bodies; ++b)
+    for (int i = 0; i < k; ++i) p.factor.inverse_mass[static_cast<std::size_t>(b * k * k + i * k + i)] = 1.0 + 0.5 * (U(rng) + 1);
+  p.factor.body.resize(static_cast<std::size_t>(2 * nc));
+  p.factor.H.resize(static_cast<std::size_t>(nc * 2 * d * k));
+  for (int a = 0; a < nc; ++a) {
+    const int b0 = static_cast<int>(rng() % static_cast<unsigned>(bodies));
+    const int b1 = static_cast<int>(rng() % static_cast<unsigned>(bodies + 1)) - 1;  // −1: the ground
+    p.factor.body[2 * a] = b0;
+    p.factor.body[2 * a + 1] = b1 == b0 ? -1 : b1;
+    for (int t = 0; t < 2 * d * k; ++t) p.factor.H[static_cast<std::size_t>(a * 2 * d * k + t)] = U(rng);
+  }
+  p.q.resize(d * nc);
+  for (int i = 0; i < d * nc; ++i) p.q[i] = U(rng) * (i % d == 0 ? 1.0 : 0.5) - (i % d == 0 ? 0.3 : 0.0);
+  p.mu = Eigen::VectorXd::Constant(nc, mu);
+  return p;
+}
+
+/// A memory in which APGD is the remembered member (work per contact `apgd`, NLGS's 10⁶)
+/// and no member is tried first before solve 10⁶; `at_rest`: the last solve was at rest.
+void remembered_apgd(moreau::Solver& s, double apgd, bool at_rest) {
+  moreau::EntitySet set = state_set(s);
+  set.field("solves").data()[0] = 10;
+  for (int k = 0; k < 5; ++k) {
+    set.field("member_cost").data()[k] = k == 0 ? 1e6 : k == 1 ? apgd : 0.0;
+    set.field("member_next_try").data()[k] = 1e6;
+    set.field("member_try_interval").data()[k] = 4;
+  }
+  set.field("at_rest").data()[0] = at_rest ? 1 : 0;
+  s.load_state(set);
+}
+
 }  // namespace
+
+TEST(AutoMemory, AfterAStepAtRestNlgsSweepsFirst) {
+  // A step at rest always gets one NLGS sweep from the warm start (resting bodies must not
+  // creep). With APGD remembered, the step after a step at rest starts with that sweep: a
+  // step still at rest costs it alone (1 iteration), not APGD's check and then it (2).
+  const moreau::LocalProblem p = factored(2, 8, 16, 0.5, 11u);
+  Eigen::VectorXd answer, u;
+  ASSERT_TRUE(make("auto", {{"tolerance", 1e-12}, {"remember", false}})->solve(p, answer, u).converged);
+  const nlohmann::json params = {{"tolerance", 1e-3}, {"remember", true}, {"direct_max_contacts", 0}};
+  moreau::SolverReport rep[2];
+  for (int at_rest = 0; at_rest < 2; ++at_rest) {
+    auto a = make("auto", params);
+    remembered_apgd(*a, 1e3, at_rest == 1);
+    Eigen::VectorXd r = answer;
+    rep[at_rest] = a->solve(p, r, u);
+    ASSERT_TRUE(rep[at_rest].converged) << at_rest;
+    moreau::EntitySet after = state_set(*a);
+    a->save_state(after);
+    EXPECT_EQ(after.field("at_rest").data()[0], 1.0) << "the warm start was the answer";
+  }
+  EXPECT_EQ(rep[0].iterations, 2) << "APGD's check, then NLGS's sweep";
+  EXPECT_EQ(rep[1].iterations, 1) << "NLGS's sweep only";
+  EXPECT_LT(rep[1].work, rep[0].work);
+}
+
+TEST(AutoMemory, TheRememberedMemberIsLearntAtWhatItTookPastItsBudget) {
+  // APGD remembered at a work per contact far below what this solve needs: it stops at its
+  // budget (three times that), goes on with its own run in the slices and converges. Its
+  // memory then follows what it took (the average of the old value and this one); before,
+  // a member that needed more than its budget was never learnt, so the budget stayed short.
+  const moreau::LocalProblem p = factored(2, 8, 16, 0.5, 11u);
+  auto a = make("auto", {{"tolerance", 1e-6}, {"remember", true}, {"direct_max_contacts", 0}, {"nlgs_sweeps", 0}});
+  const double remembered = 1.0;
+  remembered_apgd(*a, remembered, false);
+  Eigen::VectorXd r = Eigen::VectorXd::Zero(p.q.size()), u;
+  const moreau::SolverReport rep = a->solve(p, r, u);
+  ASSERT_TRUE(rep.converged);
+  moreau::EntitySet after = state_set(*a);
+  a->save_state(after);
+  const double learnt = after.field("member_cost").data()[1];
+  EXPECT_GT(learnt, 10 * remembered) << "APGD's memory follows the work it took";
+  EXPECT_LE(learnt, 0.5 * remembered + 0.5 * rep.work / 16 + 1e-9);
+}
 
 TEST(AutoMemory, LoadedIntoAnotherInstanceTheLaterSolvesAreBitIdentical) {
   // A sequence of problems as a time-stepper gives them: W fixed, q drifting, each solve

@@ -9,7 +9,9 @@
 // work per contact to converge from the warm start: the member with the lowest
 // remembered work (the incumbent) goes first (NLGS when nothing is known); every few solves
 // (4, doubling after each loss, at most 256) another member is tried first with the
-// incumbent's work as its budget: if it converges within that, it takes over.
+// incumbent's work as its budget: if it converges within that, it takes over. A member
+// that goes on with its own run past its budget is learnt at what it took; after a step at
+// rest NLGS's first sweep goes first (rest_probe()).
 // 1. NLGS runs on exactly the `nlgs` schedule (error at sweep 1, then every `check_every`
 //    sweeps; through body velocities in the time-stepper), so a step that NLGS finishes
 //    costs what `nlgs` costs. It keeps going while its measured rate says it finishes
@@ -285,8 +287,8 @@ class Auto : public Solver {
         } else {
           mc.interval = std::min<long>(2 * mc.interval, 256);
           challenged = true;
-          for (int k : {apgd_member, newton_member})  // the others now start from its iterate; NLGS from the warm start
-            if (k != c) m[k].clean = false;
+          m[apgd_member].clean = false;  // the others now start from its iterate; NLGS from the warm start
+          m[newton_member].clean = false;
         }
         mc.next_probe = solve_index_ + mc.interval;
         if (best_err_ <= tol_) return finish();
