@@ -2,8 +2,8 @@
 // (Solver::state_fields): saved into the `solver` set and loaded into another instance,
 // the later solves are bit-identical to those of the instance that learnt it.
 #include <cmath>
-#include <random>
 
+#include "factored_problem.hpp"
 #include "solver_cases.hpp"
 
 using namespace solver_cases;
@@ -23,29 +23,10 @@ std::vector<double> values(const moreau::EntitySet& set) {
   return v;
 }
 
-/// A problem as the time-stepper gives it: the factor W = H M⁻¹ Hᵀ only (W not built).
-moreau::LocalProblem factored(int d, int bodies, int nc, double mu, unsigned seed) {
-  std::mt19937 rng(seed);
-  std::uniform_real_distribution<double> U(-1, 1);
-  const int k = d == 2 ? 3 : 6;
-  moreau::LocalProblem p;
-  p.dim = d;
-  p.factor.k = k;
-  p.factor.inverse_mass.assign(static_cast<std::size_t>(bodies * k * k), 0.0);
-  for (int b = 0; b < bodies; ++b)
-    for (int i = 0; i < k; ++i) p.factor.inverse_mass[static_cast<std::size_t>(b * k * k + i * k + i)] = 1.0 + 0.5 * (U(rng) + 1);
-  p.factor.body.resize(static_cast<std::size_t>(2 * nc));
-  p.factor.H.resize(static_cast<std::size_t>(nc * 2 * d * k));
-  for (int a = 0; a < nc; ++a) {
-    const int b0 = static_cast<int>(rng() % static_cast<unsigned>(bodies));
-    const int b1 = static_cast<int>(rng() % static_cast<unsigned>(bodies + 1)) - 1;  // −1: the ground
-    p.factor.body[2 * a] = b0;
-    p.factor.body[2 * a + 1] = b1 == b0 ? -1 : b1;
-    for (int t = 0; t < 2 * d * k; ++t) p.factor.H[static_cast<std::size_t>(a * 2 * d * k + t)] = U(rng);
-  }
-  p.q.resize(d * nc);
-  for (int i = 0; i < d * nc; ++i) p.q[i] = U(rng) * (i % d == 0 ? 1.0 : 0.5) - (i % d == 0 ? 0.3 : 0.0);
-  p.mu = Eigen::VectorXd::Constant(nc, mu);
+/// A problem as the time-stepper gives it to `auto`: the factor W = H M⁻¹ Hᵀ only.
+moreau::LocalProblem factored(int d, int bodies, int nc, unsigned seed) {
+  moreau::LocalProblem p = factored_problem(d, bodies, 2, nc, seed);
+  p.W.resize(0, 0);
   return p;
 }
 
@@ -69,7 +50,7 @@ TEST(AutoMemory, AfterAStepAtRestNlgsSweepsFirst) {
   // A step at rest always gets one NLGS sweep from the warm start (resting bodies must not
   // creep). With APGD remembered, the step after a step at rest starts with that sweep: a
   // step still at rest costs it alone (1 iteration), not APGD's check and then it (2).
-  const moreau::LocalProblem p = factored(2, 8, 16, 0.5, 11u);
+  const moreau::LocalProblem p = factored(2, 8, 16, 11u);
   Eigen::VectorXd answer, u;
   ASSERT_TRUE(make("auto", {{"tolerance", 1e-12}, {"remember", false}})->solve(p, answer, u).converged);
   const nlohmann::json params = {{"tolerance", 1e-3}, {"remember", true}, {"direct_max_contacts", 0}};
@@ -94,7 +75,7 @@ TEST(AutoMemory, TheRememberedMemberIsLearntAtWhatItTookPastItsBudget) {
   // budget (three times that), goes on with its own run in the slices and converges. Its
   // memory then follows what it took (the average of the old value and this one); before,
   // a member that needed more than its budget was never learnt, so the budget stayed short.
-  const moreau::LocalProblem p = factored(2, 8, 16, 0.5, 11u);
+  const moreau::LocalProblem p = factored(2, 8, 16, 11u);
   auto a = make("auto", {{"tolerance", 1e-6}, {"remember", true}, {"direct_max_contacts", 0}, {"nlgs_sweeps", 0}});
   const double remembered = 1.0;
   remembered_apgd(*a, remembered, false);

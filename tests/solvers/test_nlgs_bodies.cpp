@@ -10,6 +10,7 @@
 #include <random>
 
 #include "apgd_core.hpp"
+#include "factored_problem.hpp"
 #include "scaled_factor.hpp"
 #include "sim.hpp"
 
@@ -23,59 +24,10 @@ std::unique_ptr<moreau::Solver> nlgs(const std::string& exchange) {
                                              moreau::BuildContext{});
 }
 
-/// nb bodies (the first `fixed` with zero inverse mass), nc contacts between random pairs
-/// of distinct bodies, random H blocks and SPD inverse masses; q pushes contacts closed.
-moreau::LocalProblem random_problem(int d, int nb, int fixed, int nc, unsigned seed) {
-  std::mt19937 rng(seed);
-  std::uniform_real_distribution<double> U(-1, 1);
-  const int k = d == 2 ? 3 : 6;
-  moreau::LocalProblem P;
-  P.dim = d;
-  auto& f = P.factor;
-  f.k = k;
-  f.inverse_mass.assign(static_cast<std::size_t>(nb * k * k), 0.0);
-  std::vector<Eigen::MatrixXd> Mi(nb, Eigen::MatrixXd::Zero(k, k));
-  for (int b = fixed; b < nb; ++b) {
-    Eigen::MatrixXd A = Eigen::MatrixXd::NullaryExpr(k, k, [&] { return U(rng); });
-    Mi[b] = A * A.transpose() + 0.5 * Eigen::MatrixXd::Identity(k, k);
-    for (int i = 0; i < k; ++i)
-      for (int j = 0; j < k; ++j) f.inverse_mass[b * k * k + i * k + j] = Mi[b](i, j);
-  }
-  f.body.resize(2 * nc);
-  f.H.resize(static_cast<std::size_t>(nc * 2 * d * k));
-  Eigen::MatrixXd H = Eigen::MatrixXd::Zero(nc * d, nb * k);
-  for (int a = 0; a < nc; ++a) {
-    const int b0 = fixed + static_cast<int>(rng() % static_cast<unsigned>(nb - fixed));  // a moving body
-    int b1 = static_cast<int>(rng() % static_cast<unsigned>(nb));
-    if (b1 == b0) b1 = (b0 + 1) % nb;
-    const int bs[2] = {b0, b1};
-    for (int s = 0; s < 2; ++s) {
-      f.body[2 * a + s] = bs[s] < fixed ? -1 : bs[s];
-      for (int i = 0; i < d; ++i)
-        for (int l = 0; l < k; ++l) {
-          const double h = U(rng);
-          f.H[(a * 2 + s) * d * k + i * k + l] = h;
-          H(a * d + i, bs[s] * k + l) += h;
-        }
-    }
-  }
-  Eigen::MatrixXd M = Eigen::MatrixXd::Zero(nb * k, nb * k);
-  for (int b = 0; b < nb; ++b) M.block(b * k, b * k, k, k) = Mi[b];
-  const Eigen::MatrixXd W = H * M * H.transpose();
-  P.W = W.sparseView();
-  P.q.resize(nc * d);
-  for (int a = 0; a < nc; ++a) {
-    P.q[a * d] = -0.5 - 0.5 * (U(rng) + 1);  // approaching
-    for (int i = 1; i < d; ++i) P.q[a * d + i] = U(rng);
-  }
-  P.mu = Eigen::VectorXd::Constant(nc, 0.3);
-  return P;
-}
-
 void same_answer_both_ways(int d, unsigned seed) {
   // Few contacts on several bodies: W is non-singular and the solution unique, so both
   // exchanges must reach the same r (to the tolerance over W's conditioning).
-  const auto P = random_problem(d, 6, 2, d == 2 ? 6 : 5, seed);
+  const auto P = factored_problem(d, 6, 2, d == 2 ? 6 : 5, seed);
   Eigen::VectorXd rw, uw, rb, ub;
   const auto rep_w = nlgs("w")->solve(P, rw, uw);
   const auto rep_b = nlgs("bodies")->solve(P, rb, ub);
@@ -120,7 +72,7 @@ TEST(NlgsBodies, FrictionlessPackedRecordsGiveTheSameAnswer) {
   for (int d : {2, 3})
     for (bool central : {false, true})
       for (unsigned seed = 1; seed <= 3; ++seed) {
-        const auto P = frictionless(random_problem(d, 6, 2, d == 2 ? 6 : 5, seed), central);
+        const auto P = frictionless(factored_problem(d, 6, 2, d == 2 ? 6 : 5, seed), central);
         Eigen::VectorXd rw, uw, rb = Eigen::VectorXd::Constant(P.q.size(), 0.1), ub;  // r_t ≠ 0 to begin
         const auto rep_w = nlgs("w")->solve(P, rw, uw);
         const auto rep_b = nlgs("bodies")->solve(P, rb, ub);
@@ -140,7 +92,7 @@ TEST(NlgsBodies, ScalarInverseMassesGiveTheSameAnswer) {
   // R I⁻¹ Rᵀ) must not stop it from applying, nor change the answer.
   for (int d : {2, 3})
     for (unsigned seed = 1; seed <= 3; ++seed) {
-      auto P = random_problem(d, 6, 2, d == 2 ? 6 : 5, seed);
+      auto P = factored_problem(d, 6, 2, d == 2 ? 6 : 5, seed);
       const int k = P.factor.k;
       for (std::size_t b = 2; b < P.factor.inverse_mass.size() / (k * k); ++b) {
         double* Mi = &P.factor.inverse_mass[b * k * k];
@@ -161,7 +113,7 @@ TEST(NlgsBodies, ScalarInverseMassesGiveTheSameAnswer) {
 }
 
 TEST(NlgsBodies, WarmStartFromTheAnswerStopsAtOnce) {
-  const auto P = random_problem(3, 6, 2, 5, 7);
+  const auto P = factored_problem(3, 6, 2, 5, 7);
   Eigen::VectorXd r, u;
   ASSERT_TRUE(nlgs("bodies")->solve(P, r, u).converged);
   const auto again = nlgs("bodies")->solve(P, r, u);
@@ -170,7 +122,7 @@ TEST(NlgsBodies, WarmStartFromTheAnswerStopsAtOnce) {
 }
 
 TEST(NlgsBodies, WithoutAFactorTheErrorNamesTheOption) {
-  auto P = random_problem(3, 4, 1, 3, 3);
+  auto P = factored_problem(3, 4, 1, 3, 3);
   P.factor = {};
   Eigen::VectorXd r, u;
   try {
@@ -202,7 +154,7 @@ TEST(AutoFactored, WithoutWSameAnswerAsWithW) {
   // Newton on the W it assembles itself. Both must reach the answer found with W given.
   for (int d : {2, 3})
     for (long sweeps : {200L, 0L}) {
-      const auto full = random_problem(d, 6, 2, d == 2 ? 6 : 5, 11);
+      const auto full = factored_problem(d, 6, 2, d == 2 ? 6 : 5, 11);
       auto factored = full;
       factored.W.resize(0, 0);
       Eigen::VectorXd rw, uw, rf, uf;
@@ -246,7 +198,7 @@ TEST(ApgdFactored, ThroughTheFactorSameAnswerAsWithW) {
   // rounding moves it by up to about 20 %.
   for (int d : {2, 3})
     for (unsigned seed : {21u, 22u}) {
-      const auto [with_w, through_factor] = apgd_same_answer_through_the_factor(random_problem(d, 6, 2, d == 2 ? 6 : 5, seed));
+      const auto [with_w, through_factor] = apgd_same_answer_through_the_factor(factored_problem(d, 6, 2, d == 2 ? 6 : 5, seed));
       EXPECT_LT(std::abs(through_factor - with_w), 1 + 3 * with_w / 10) << "dim " << d << " seed " << seed << ": " << with_w << " with W";
     }
 }
@@ -257,7 +209,7 @@ TEST(AutoFactored, AboveDirectMaxContactsApgdAndNlgsReachTheSameAnswer) {
   // (nlgs_sweeps = 10) so the later stages do the work; the answer is the one with W.
   for (int d : {2, 3})
     for (unsigned seed : {11u, 12u, 13u}) {
-      const auto full = random_problem(d, 6, 2, d == 2 ? 6 : 5, seed);
+      const auto full = factored_problem(d, 6, 2, d == 2 ? 6 : 5, seed);
       auto factored = full;
       factored.W.resize(0, 0);
       Eigen::VectorXd rw, uw, rf, uf;
@@ -279,7 +231,7 @@ namespace {
 /// (diag(m_t, m_r)), body 3 a body whose rotations are locked (zero rows and columns), and
 /// the laws' compliance on the diagonal; W rebuilt from them.
 moreau::LocalProblem varied_problem(int d, unsigned seed, bool compliance) {
-  auto P = random_problem(d, 8, 2, d == 2 ? 14 : 12, seed);
+  auto P = factored_problem(d, 8, 2, d == 2 ? 14 : 12, seed);
   auto& f = P.factor;
   const int k = f.k;
   for (int b : {2, 3})
