@@ -276,6 +276,7 @@ class Auto : public Solver {
 
     // 0. The incumbent, and now and then another member first on the incumbent's budget.
     const int inc = remember_ ? incumbent(m) : -1;
+    took_over_ = -1;
     bool challenged = false;  // a challenger ran first and lost
     if (inc >= 0) {
       const int c = challenger(m, inc);
@@ -284,6 +285,7 @@ class Auto : public Solver {
         Memory& mc = memory_[c];
         if (best_err_ <= tol_) {
           mc.interval = 4;
+          took_over_ = c;
         } else {
           mc.interval = std::min<long>(2 * mc.interval, 256);
           challenged = true;
@@ -994,7 +996,7 @@ class Auto : public Solver {
       if (s.per_iteration > 0 && std::isfinite(s.per_iteration)) mem.step = s.per_iteration / nc_;
       if (!s.clean) continue;
       const double c = (k == winner_ ? s.spent : s.need) / nc_;
-      if (c > 0 && std::isfinite(c)) mem.cost = mem.cost > 0 ? 0.5 * mem.cost + 0.5 * c : c;
+      if (c > 0 && std::isfinite(c)) mem.cost = remembered(mem.cost, c, k == took_over_);
     }
   }
 
@@ -1008,6 +1010,17 @@ class Auto : public Solver {
     for (int k = 0; k < member_count; ++k)
       if (memory_[k].cost > 0) std::fprintf(stderr, " %s %.4g", member_name[k], memory_[k].cost);
     std::fprintf(stderr, "\n");
+  }
+
+  /// A member's remembered work after a solve that showed `c` (work per contact): the
+  /// exponential average of the two, but a challenger that won takes over (its work, which
+  /// was within the incumbent's), and one solve raises the memory at most twofold. Without
+  /// these, one hard step left a member's memory 20× above its usual cost for hundreds of
+  /// solves (shear_flow_2d: NLGS's extrapolated need; APGD's, stale while ADMM ran), and a
+  /// won challenge changed nothing until a few more wins at intervals of 4 solves.
+  static double remembered(double old, double c, bool took_over) {
+    if (took_over || !(old > 0)) return c;
+    return 0.5 * old + 0.5 * std::min(c, 3 * old);
   }
 
   int winner_ = -1;             ///< the member whose run reached the tolerance (−1: none)
@@ -1053,6 +1066,7 @@ class Auto : public Solver {
   int apgd_slices_ = 0;   ///< APGD slices of this solve
   apgd::State apgd_state_;
   int current_ = -1;      ///< the member running
+  int took_over_ = -1;    ///< the challenger that won this solve (−1: none)
   int best_by_ = -1;      ///< the member whose iterate is best_
   LocalProblem assembled_;
   bool assembled_ready_ = false;
