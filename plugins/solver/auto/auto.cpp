@@ -276,7 +276,6 @@ class Auto : public Solver {
 
     // 0. The incumbent, and now and then another member first on the incumbent's budget.
     const int inc = remember_ ? incumbent(m) : -1;
-    took_over_ = -1;
     bool challenged = false;  // a challenger ran first and lost
     if (inc >= 0) {
       const int c = challenger(m, inc);
@@ -285,7 +284,6 @@ class Auto : public Solver {
         Memory& mc = memory_[c];
         if (best_err_ <= tol_) {
           mc.interval = 4;
-          took_over_ = c;
         } else {
           mc.interval = std::min<long>(2 * mc.interval, 256);
           challenged = true;
@@ -996,7 +994,7 @@ class Auto : public Solver {
       if (s.per_iteration > 0 && std::isfinite(s.per_iteration)) mem.step = s.per_iteration / nc_;
       if (!s.clean) continue;
       const double c = (k == winner_ ? s.spent : s.need) / nc_;
-      if (c > 0 && std::isfinite(c)) mem.cost = remembered(mem.cost, c, k == took_over_);
+      if (c > 0 && std::isfinite(c)) mem.cost = remembered(mem.cost, c);
     }
   }
 
@@ -1013,13 +1011,13 @@ class Auto : public Solver {
   }
 
   /// A member's remembered work after a solve that showed `c` (work per contact): the
-  /// exponential average of the two, but a challenger that won takes over (its work, which
-  /// was within the incumbent's), and one solve raises the memory at most twofold. Without
-  /// these, one hard step left a member's memory 20× above its usual cost for hundreds of
-  /// solves (shear_flow_2d: NLGS's extrapolated need; APGD's, stale while ADMM ran), and a
-  /// won challenge changed nothing until a few more wins at intervals of 4 solves.
-  static double remembered(double old, double c, bool took_over) {
-    if (took_over || !(old > 0)) return c;
+  /// exponential average of the two, but one solve raises it at most twofold. Without the
+  /// cap one hard step left a member's memory 20× above its usual cost for hundreds of
+  /// solves (shear_flow_2d: NLGS's extrapolated need, then APGD's, stale while ADMM ran 450
+  /// steps). (A won challenge setting the winner's memory to its work instead made members
+  /// take turns on brick_wall_2d's settled steps, where any challenger wins: 1.08 → 1.43.)
+  static double remembered(double old, double c) {
+    if (!(old > 0)) return c;
     return 0.5 * old + 0.5 * std::min(c, 3 * old);
   }
 
@@ -1066,7 +1064,6 @@ class Auto : public Solver {
   int apgd_slices_ = 0;   ///< APGD slices of this solve
   apgd::State apgd_state_;
   int current_ = -1;      ///< the member running
-  int took_over_ = -1;    ///< the challenger that won this solve (−1: none)
   int best_by_ = -1;      ///< the member whose iterate is best_
   LocalProblem assembled_;
   bool assembled_ready_ = false;
