@@ -10,8 +10,9 @@
 // remembered work (the incumbent) goes first (NLGS when nothing is known); every few solves
 // (4, doubling after each loss, at most 256) another member is tried first with the
 // incumbent's work as its budget: if it converges within that, it takes over. A member
-// that goes on with its own run past its budget is learnt at what it took; after a step at
-// rest NLGS's first sweep goes first (rest_probe()).
+// that goes on with its own run past its budget is learnt at what it took (a memory rises
+// at most twofold a solve: remembered()); after a step at rest NLGS's first sweep goes
+// first (rest_probe()).
 // 1. NLGS runs on exactly the `nlgs` schedule (error at sweep 1, then every `check_every`
 //    sweeps; through body velocities in the time-stepper), so a step that NLGS finishes
 //    costs what `nlgs` costs. It keeps going while its measured rate says it finishes
