@@ -926,8 +926,8 @@ class Auto : public Solver {
       const double step = newton_step_estimate();
       int waiting = -1;
       for (int k : probe_order()) {
-        if (excluded(m[k], k) || m[k].slices != 0) continue;
-        const double probe = k == admm_member ? step : k == apgd_member ? 0.0 : 4 * step;
+        if (k < 0 || excluded(m[k], k) || m[k].slices != 0) continue;
+        const double probe = k == admm_member ? step : k == apgd_member || k == nlgs_member ? 0.0 : 4 * step;
         if (probe > elapsed && remaining < 4 * step) {
           if (waiting < 0) waiting = k;
           continue;
@@ -950,9 +950,15 @@ class Auto : public Solver {
   /// can crawl), but from r = 0 on a problem given with W Newton from the best iterate
   /// first (box tower, cold, 1e-4: Newton's own run spent its 4-step probe, 1.6× APGD's
   /// whole solve, without moving from error 1.0; from APGD's iterate it converged in 4).
-  std::array<int, 4> probe_order() const {
-    if (cold_ && !bodies_) return {apgd_member, newton_member, newton_start_member, admm_member};
-    return {apgd_member, newton_start_member, newton_member, admm_member};
+  /// In a time step whose solve started with another remembered member, NLGS (its first
+  /// stage skipped, records within the caches) comes right after APGD: when that member
+  /// stalls it is the usual finisher (wet_pile_3d, APGD remembered and stalling at 2.5e-3
+  /// on a step: Newton's own run then took 0.88 s; with NLGS probed the run's solve stage
+  /// 1.24 → 0.49 s). −1: no member.
+  std::array<int, 5> probe_order() const {
+    if (cold_ && !bodies_) return {apgd_member, newton_member, newton_start_member, admm_member, -1};
+    if (bodies_ && records_fit_ && nlgs_sweeps_ > 0) return {apgd_member, nlgs_member, newton_start_member, newton_member, admm_member};
+    return {apgd_member, newton_start_member, newton_member, admm_member, -1};
   }
 
   /// The share of the work spent so far that a slice of `who` gets: all of it for the member
