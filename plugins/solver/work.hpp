@@ -60,9 +60,19 @@ struct WorkCosts {
   /// dense ones at 3 moved box_tower_3d 0.97 → 1.07, so they stay at 2.5). The local solves
   /// are in it (perf, brick_wall_2d: ~40 % of a 2D sweep). Problems given with W (FCLib) do
   /// not sweep body records: their counts are unchanged.
+  ///
+  /// 3D dense records (i15-3d): in time steps (MOREAU_AUTO_TRACE, CPU ns per counted unit)
+  /// NLGS's sweeps of dense records were still under-counted: clusters_3d (35 contacts,
+  /// records of 85 doubles) 0.85–1.0 against APGD's 0.5 (whole run: auto 1.51× `apgd`), so
+  /// in 3D a dense record counts 3 × (0.3 per double + 45 per contact): ×2.1, the dense
+  /// M⁻¹Hᵀ products of the local solve that its size leaves out. (Spheres' records at the
+  /// same 45 brought spheres_in_box_3d 1.68 → 1.36 but wet_pile_3d, where NLGS alone is
+  /// 2.4× faster than APGD, 4.5 → 16.7: they stay as they were.)
   static double body_sweep(const LocalProblem& P, double record, bool dense) {
     const double nc = static_cast<double>(P.contacts());
-    const double sweep = (dense ? 2.5 : 3.0) * (nc * (0.3 * record + (P.dim == 2 ? 5.0 : 15.0)) + 200);
+    const bool dense_3d = dense && P.dim == 3;
+    const double local = P.dim == 2 ? 5.0 : dense_3d ? 45.0 : 15.0;
+    const double sweep = (dense && !dense_3d ? 2.5 : 3.0) * (nc * (0.3 * record + local) + 200);
     const double bytes = record_bytes(P, record);
     return bytes > cache_bytes ? sweep * std::min(4.0, 1 + 1.5 * std::log2(bytes / cache_bytes)) : sweep;
   }
