@@ -17,7 +17,7 @@ namespace moreau::apgd {
 /// included) that comes through the bodies' rotation: per contact Σ_s h_R M⁻¹_RR h_Rᵀ / W_nn,
 /// h_R the rotational part (the last k − dim entries) of side s's normal row of H, M⁻¹_RR
 /// its body's rotational block. In [0, 1]: 0 for disks and spheres, 0.7 for a 2 × 1 brick
-/// on its corners. Costs about one product by W (k² per contact side). 0 without a factor or contacts.
+/// on its corners. Costs about a tenth of a product by W. 0 without a factor or contacts.
 double normal_lever(int dim, const BodyFactor& f);
 
 /// Below this mean share `auto` scales APGD's steps per direction in a time step (the
