@@ -57,7 +57,6 @@
 #include "newton_core.hpp"
 #include "nlgs_body_sweep.hpp"
 #include "nlgs_sweep.hpp"
-#include "normal_lever.hpp"
 #include "sweep_order.hpp"
 
 namespace {
@@ -608,22 +607,11 @@ class Auto : public Solver {
     // There APGD's steps dominate: its error every 3 steps (10⁴ spheres: 1.14× per step).
     apgd_check_every_ = records_fit_ ? 1 : 3;
   }
-  /// APGD's step scaling (apgd_core.hpp), chosen when APGD packs its products (its first
-  /// call of a solve) and kept over the solve's slices. In a time step (a body factor): per
-  /// direction (normal, tangential) where NLGS's records exceed the caches (there APGD does
-  /// the work; measured faster on 10⁴ and 10⁵ spheres, docs/solvers.md "Large problems")
-  /// and where the contacts are round (apgd::round_contacts: disks, spheres; measured
-  /// faster on those example scenes, slower on blocks: docs/solvers.md "auto"); one scalar
-  /// per contact elsewhere, and on problems given with W (FCLib, the guarantee's corpus:
-  /// faster on some, slower on others; the guarantee's figures stay those of `contact`).
-  apgd::Scaling apgd_scaling() {
-    if (apgd_slices_ == 0)
-      apgd_scaling_ = bodies_ && (!records_fit_ || apgd::round_contacts(P_->dim, P_->factor))
-                          ? apgd::Scaling::normal_tangent
-                          : apgd::Scaling::contact;
-    return apgd_scaling_;
-  }
-  apgd::Scaling apgd_scaling_ = apgd::Scaling::contact;  ///< apgd_scaling()'s choice for this solve
+  /// APGD's step scaling (apgd_core.hpp): per direction (normal, tangential) where NLGS's
+  /// records exceed the caches (there APGD does the work; measured faster on 10⁴ and 10⁵
+  /// spheres, docs/solvers.md "Large problems"), one scalar per contact elsewhere: on the
+  /// example scenes and the FCLib corpus it was faster on some and slower on others.
+  apgd::Scaling apgd_scaling() const { return bodies_ && !records_fit_ ? apgd::Scaling::normal_tangent : apgd::Scaling::contact; }
   /// The start's error before the slices (nlgs_sweeps = 0, or records beyond the caches).
   /// Without NLGS's records APGD measures it (it packs its product for its first slice
   /// anyway; that slice then continues from it): one product instead of two.
