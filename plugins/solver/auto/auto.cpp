@@ -367,22 +367,31 @@ class Auto : public Solver {
       const OwnRun& o = own_[k];
       f[k].in = o.iterations < max_it_;
       f[k].spent = o.spent;
-      f[k].step = o.per_iteration > 0 ? o.per_iteration : k == nlgs_member ? costs_.sweep : costs_.product + costs_.error;
+      f[k].step = iteration_work(k, o.per_iteration);
     }
     for (int k : {newton_start_member, admm_member}) {
       const MemberState& s = m[k];
       f[k].in = s.available && s.iterations < member_max(k);
       f[k].spent = s.spent;
-      f[k].step = s.per_iteration > 0 ? s.per_iteration : newton_step_estimate();  // a factorisation
+      f[k].step = iteration_work(k, s.per_iteration);
     }
     return f;
   }
   /// The least first iteration of a floor member other than NLGS: NLGS's first stage ends
   /// once the work reaches K times it, as every choice of the slices does (floor.hpp).
   double first_floor_step(bool direct) const {
-    double s = costs_.product + costs_.error;  // APGD's
-    if (direct) s = std::min(s, newton_step_estimate());  // ADMM's (Newton's probe is 4 of them)
+    double s = iteration_work(apgd_member, 0);
+    if (direct) s = std::min(s, iteration_work(admm_member, 0));  // (Newton's probe is 4 of them)
     return s;
+  }
+  /// The work of one iteration of member k: `measured` on this problem when known, else its
+  /// estimate (an NLGS sweep; an APGD step, a product and an error; a Newton or ADMM step,
+  /// a factorisation).
+  double iteration_work(int k, double measured) const {
+    if (measured > 0) return measured;
+    if (k == nlgs_member) return costs_.sweep;
+    if (k == apgd_member) return costs_.product + costs_.error;
+    return newton_step_estimate();
   }
   /// One slice of rule 2. The rule picks a member and its slice (the least it takes: its
   /// budget, at least 5 of its iterations, Newton's 4-step probe); a floor member that
@@ -409,10 +418,7 @@ class Auto : public Solver {
       budget = probe_share(m, who) * work_;
       const MemberState& ms = m[who];
       const bool newton = who == newton_start_member || who == newton_member;
-      const double step = ms.per_iteration > 0 ? ms.per_iteration
-                          : newton || who == admm_member ? newton_step_estimate()
-                          : who == nlgs_member ? costs_.sweep
-                                               : costs_.product + costs_.error;
+      const double step = iteration_work(who, ms.per_iteration);
       upcoming = newton && ms.slices == 0 ? 4 * step : std::max(5 * step, costs_.sweep);
     }
     auto floor_runs_but = runs;
@@ -486,15 +492,10 @@ class Auto : public Solver {
     o.err = std::min(o.err, reached);
     if (total_ > it0) o.per_iteration = (work_ - w0) / static_cast<double>(total_ - it0);
     if (ms) {  // booked as the rule's slice of this member, as slice() does
-      const double took = work_ - w0, gain = reached < from ? std::log(from / reached) : 0.0;
+      const double took = work_ - w0;
       ms->iterations += total_ - it0;
       if (total_ > it0) ms->per_iteration = o.per_iteration;
-      account(*ms, took, k == nlgs_member ? window_rate : gain / std::max(took, 1e-12));
-      ms->fruitless = gain < std::log(1 / 0.99) ? ms->fruitless + 1 : 0;
-      if (best_err_ > tol_)
-        ms->need = ms->rate > 0 ? ms->spent + std::log(std::min(from, reached) / tol_) / ms->rate : 0;
-      else
-        winner_ = k;
+      book_slice(*ms, k, took, from, reached, window_rate);
     }
     if (trace_)
       std::fprintf(stderr, "auto: floor, own %s, budget %.3g, took %.3g work (%.3g ns), reached %.2e, best %.2e, it %ld\n",
@@ -739,19 +740,11 @@ class Auto : public Solver {
     const double took = work_ - t_start;
     if (total_ > before_it) ms.per_iteration = took / static_cast<double>(total_ - before_it);
     if (newton && ms.per_iteration > 0 && !bodies_) newton_step_ = ms.per_iteration;  // measured on this problem
-    const double gain = reached < from ? std::log(from / reached) : 0.0;
     if (trace_)
       std::fprintf(stderr, "auto: %s, budget %.3g, took %.3g work (%.3g ns), from %.2e reached %.2e, best %.2e, it %ld, n %ld nnz %ld\n",
                    member_name[who], budget, took, 1e9 * (thread_seconds() - t0), from, reached, best_err_, total_,
                    static_cast<long>(P_->q.size()), static_cast<long>(P_->W.nonZeros()));
-    account(ms, took, who == nlgs_member ? window_rate : gain / std::max(took, 1e-12));
-    ms.fruitless = gain < std::log(1 / 0.99) ? ms.fruitless + 1 : 0;
-    if (best_err_ > tol_) {  // its work to converge, extrapolated at the rate it showed
-      const double rate = ms.rate;
-      ms.need = rate > 0 ? ms.spent + std::log(std::min(from, reached) / tol_) / rate : 0;
-    } else {
-      winner_ = who;
-    }
+    book_slice(ms, who, took, from, reached, window_rate);
     if (ms.own_run) {
       ms.own = who == newton_start_member ? last_ : x;  // Newton resumes from its last step, not its best
       ms.own_err = std::min(ms.own_err, reached);
@@ -890,6 +883,19 @@ class Auto : public Solver {
     ms.spent += took;
     ++ms.slices;
     ms.rate = std::max(rate, 0.0);
+  }
+  /// Books a slice of rule 2 (slice(), or own_slice() when the rule picked the member) that
+  /// took `took` from error `from` to `reached`: its rate (NLGS's over its last checks,
+  /// `window_rate`; the others' over the slice), whether it was fruitless, and its work to
+  /// converge extrapolated at that rate, or the winner when the tolerance is met.
+  void book_slice(MemberState& ms, int who, double took, double from, double reached, double window_rate) {
+    const double gain = reached < from ? std::log(from / reached) : 0.0;
+    account(ms, took, who == nlgs_member ? window_rate : gain / std::max(took, 1e-12));
+    ms.fruitless = gain < std::log(1 / 0.99) ? ms.fruitless + 1 : 0;
+    if (best_err_ > tol_)
+      ms.need = ms.rate > 0 ? ms.spent + std::log(std::min(from, reached) / tol_) / ms.rate : 0;
+    else
+      winner_ = who;
   }
 
   /// The next member: the one whose last rate finishes soonest; but while that one would
