@@ -48,34 +48,34 @@ def build(xmf, at=None):
     time = times[-1] if at is None else next((t for t in times if t >= at - 1e-12), times[-1])
     view.ViewTime = time
     reader.UpdatePipeline(time)  # the bounds are unset before
-    bounds = reader.GetDataInformation().GetBounds()
+    # Modelizations with elements (moreau-output/2 scenes that are not rigid-only): each
+    # one's grid, its cells drawn over its nodes (a chain's springs as lines, a mesh).
+    grids = [g.get('Name') for g in ET.parse(xmf).getroot().find('Domain').findall('Grid')]
+    meshes = [name for name in grids if name not in ('bodies', 'shapes', 'contacts', 'force_network', 'rigid')]
+    bounds = framed_bounds(reader, meshes, time)
     size = max(bounds[1] - bounds[0], bounds[3] - bounds[2], bounds[5] - bounds[4], 1e-9)
     shapes = ExtractBlock(Input=reader, Selectors=['/Root/shapes'])
     shown = Show(shapes, view)
     shown.Representation = 'Surface With Edges'
     shown.Opacity = 0.3
     ColorBy(shown, None)
-    # Modelizations with elements (moreau-output/2 scenes that are not rigid-only): each
-    # one's grid, its cells drawn over its nodes (a chain's springs as lines, a mesh).
-    grids = [g.get('Name') for g in ET.parse(xmf).getroot().find('Domain').findall('Grid')]
-    for name in grids:
-        if name not in ('bodies', 'shapes', 'contacts', 'force_network', 'rigid'):
-            block = ExtractBlock(Input=reader, Selectors=['/Root/' + name])
-            block.UpdatePipeline(time)
-            mesh = Show(block, view)
-            mesh.Representation = 'Surface With Edges'
-            mesh.LineWidth = 3
-            mesh.PointSize = 6
-            mesh.AmbientColor = mesh.DiffuseColor = mesh.EdgeColor = [0.8, 0.2, 0.1]
-            if 'von_mises' in block.PointData.keys():
-                # A deformable body (elastic): its deformed mesh coloured by the nodal von
-                # Mises stress, edges kept dark so the elements show.
-                ColorBy(mesh, ('POINTS', 'von_mises'))
-                mesh.EdgeColor = [0.2, 0.2, 0.2]
-                mesh.LineWidth = 1
-                mesh.SetScalarBarVisibility(view, True)
-            else:
-                mesh.ColorArrayName = ['POINTS', '']
+    for name in meshes:
+        block = ExtractBlock(Input=reader, Selectors=['/Root/' + name])
+        block.UpdatePipeline(time)
+        mesh = Show(block, view)
+        mesh.Representation = 'Surface With Edges'
+        mesh.LineWidth = 3
+        mesh.PointSize = 6
+        mesh.AmbientColor = mesh.DiffuseColor = mesh.EdgeColor = [0.8, 0.2, 0.1]
+        if 'von_mises' in block.PointData.keys():
+            # A deformable body (elastic): its deformed mesh coloured by the nodal von
+            # Mises stress, edges kept dark so the elements show.
+            ColorBy(mesh, ('POINTS', 'von_mises'))
+            mesh.EdgeColor = [0.2, 0.2, 0.2]
+            mesh.LineWidth = 1
+            mesh.SetScalarBarVisibility(view, True)
+        else:
+            mesh.ColorArrayName = ['POINTS', '']
     contacts = ExtractBlock(Input=reader, Selectors=['/Root/contacts'])
     contacts.UpdatePipeline(time)
     if contacts.GetDataInformation().GetNumberOfPoints() > 0:
@@ -105,8 +105,59 @@ def build(xmf, at=None):
         view.CameraFocalPoint = centre
         view.CameraPosition = [centre[0] + 0.6 * size, centre[1] - 1.5 * size, centre[2] + 0.8 * size]
         view.CameraViewUp = [0, 0, 1]
-    view.ResetCamera()
+    view.ResetCamera(*bounds)
     return view
+
+
+def framed_bounds(reader, meshes, time):
+    """The box the camera frames: every fixed body's shapes (the apparatus: walls, floors)
+    and the shapes of the free bodies whose centre lies within the free bodies' bulk (per
+    axis, the quartiles widened by 3 interquartile ranges). A grain that left the scene
+    (fell off a silo's floor, flew away) is still drawn but no longer sets the zoom: fitting
+    it made a discharge's last frame a few pixels of silo in an empty screen. Without a body
+    grid (older files) or shape cells, the whole data's bounds."""
+    from paraview import servermanager
+    from paraview.simple import MergeBlocks
+    everything = reader.GetDataInformation().GetBounds()
+
+    def fetched(selector):
+        block = MergeBlocks(Input=ExtractBlock(Input=reader, Selectors=[selector]))
+        block.UpdatePipeline(time)
+        return servermanager.Fetch(block)
+
+    bodies, cells = fetched('/Root/bodies'), fetched('/Root/shapes')
+    fixed, owner = bodies.GetPointData().GetArray('fixed'), cells.GetCellData().GetArray('body')
+    if fixed is None or owner is None or bodies.GetNumberOfPoints() == 0 or cells.GetNumberOfCells() == 0:
+        return everything
+    free = [bodies.GetPoint(b) for b in range(bodies.GetNumberOfPoints()) if not fixed.GetValue(b)]
+    fence = []
+    for axis in range(3):
+        xs = sorted(p[axis] for p in free) or [0.0]
+        q1, q3 = xs[len(xs) // 4], xs[(3 * len(xs)) // 4]
+        fence.append((q1 - 3 * (q3 - q1), q3 + 3 * (q3 - q1)))
+    kept = [b for b in range(bodies.GetNumberOfPoints())
+            if fixed.GetValue(b) or all(lo <= bodies.GetPoint(b)[a] <= hi for a, (lo, hi) in enumerate(fence))]
+    kept = set(kept)
+    box = [float('inf'), -float('inf')] * 3
+    for c in range(cells.GetNumberOfCells()):
+        if int(owner.GetValue(c)) not in kept:
+            continue
+        lo_hi = cells.GetCell(c).GetBounds()
+        for a in range(3):
+            box[2 * a] = min(box[2 * a], lo_hi[2 * a])
+            box[2 * a + 1] = max(box[2 * a + 1], lo_hi[2 * a + 1])
+    if box[0] > box[1]:
+        return everything
+    # Modelizations with elements (meshes) are framed whole: they are the apparatus too.
+    for name in meshes:
+        block = ExtractBlock(Input=reader, Selectors=['/Root/' + name])
+        block.UpdatePipeline(time)
+        lo_hi = block.GetDataInformation().GetBounds()
+        for a in range(3):
+            if lo_hi[2 * a] <= lo_hi[2 * a + 1]:
+                box[2 * a] = min(box[2 * a], lo_hi[2 * a])
+                box[2 * a + 1] = max(box[2 * a + 1], lo_hi[2 * a + 1])
+    return tuple(box)
 
 
 def bonds(network, view, time, size):
