@@ -261,7 +261,7 @@ class Auto : public Solver {
       r = best_;
       rep.iterations = total_;
       rep.work = work_;
-      if (best_u_ok_) {  // u and the error of the best iterate, as its member computed them
+      if (best_u_ok_ && std::isfinite(best_err_)) {  // u and the error of the best iterate, as its member computed them
         u = best_u_;
         rep.error = best_err_;
       } else {
@@ -519,6 +519,8 @@ class Auto : public Solver {
   void sweep_accepted_warm_start() {
     const double accepted = best_err_;
     const Eigen::VectorXd kept = best_;
+    const bool kept_u_ok = best_u_ok_;
+    const Eigen::VectorXd kept_u = kept_u_ok ? best_u_ : Eigen::VectorXd();
     Eigen::VectorXd x = start_;  // run_nlgs packs the records from it, or sets Δv from it
     current_ = nlgs_member;
     nlgs_run_sweeps_ = 0;  // a run of its own
@@ -528,6 +530,8 @@ class Auto : public Solver {
     if (!(best_err_ <= tol_)) {
       best_ = kept;
       best_err_ = accepted;
+      best_u_ok_ = kept_u_ok;
+      if (kept_u_ok) best_u_ = kept_u;
     }
   }
 
@@ -556,6 +560,7 @@ class Auto : public Solver {
     }
     best_ = start_;  // the incumbent from the warm start (its measure of cost stays fair)
     best_err_ = inf;
+    best_u_ok_ = false;
     best_by_ = -1;
     return false;
   }
@@ -636,9 +641,14 @@ class Auto : public Solver {
     keep(r, natural_map_error(*P_, r, u));
     work_ += costs_.product + costs_.error;
   }
-  void keep(const Eigen::VectorXd& x, double e) {
+  /// x becomes the best iterate when its error e is the lowest so far. `u`: its W x + q as
+  /// the member computed it (the same product finish() would take: it is then not
+  /// recomputed; in a time step an NLGS-finished solve paid it twice, a quarter of a step
+  /// at rest on mortar_wall_2d).
+  void keep(const Eigen::VectorXd& x, double e, const Eigen::VectorXd* u = nullptr) {
     if (e < best_err_ && x.allFinite()) {
-      best_u_ok_ = false;
+      best_u_ok_ = u != nullptr;
+      if (u) best_u_ = *u;
       best_err_ = e;
       best_ = x;
       best_by_ = current_;
@@ -782,7 +792,7 @@ class Auto : public Solver {
       work_ += costs_.product + costs_.error;
       const double e = natural_map_error(P, x, v);
       if (!std::isfinite(e)) break;
-      keep(x, e);
+      keep(x, e, bodies_ ? &v : nullptr);
       own_best = std::min(own_best, e);
       *reached = own_best;
       if (best_err_ <= tol_) return rate;
