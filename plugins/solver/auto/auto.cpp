@@ -334,7 +334,7 @@ class Auto : public Solver {
     } else if (first != nlgs_member) {
       slice(m, first, 3 * memory_[first].cost * nc_, false);
       if (best_err_ <= tol_) {
-        if (bodies_ && m[first].iterations <= 1) sweep_accepted_warm_start();
+        if (bodies_ && m[first].iterations <= 1 && !beyond_caches()) sweep_accepted_warm_start();
         return finish();
       }
     } else if (!std::isfinite(best_err_)) {  // nlgs_sweeps = 0: the start's error, unless rule 0 had it
@@ -617,7 +617,18 @@ class Auto : public Solver {
   /// records exceed the caches (there APGD does the work; measured faster on 10⁴ and 10⁵
   /// spheres, docs/solvers.md "Large problems"), one scalar per contact elsewhere: on the
   /// example scenes and the FCLib corpus it was faster on some and slower on others.
-  apgd::Scaling apgd_scaling() const { return bodies_ && !records_fit_ ? apgd::Scaling::normal_tangent : apgd::Scaling::contact; }
+  apgd::Scaling apgd_scaling() const { return beyond_caches() ? apgd::Scaling::normal_tangent : apgd::Scaling::contact; }
+  /// A time step whose NLGS records exceed 4× the cache (about 2·10⁴ contacts of spheres):
+  /// APGD does the work there, and `auto` adds nothing to what `apgd` alone would do on a
+  /// warm-started step. NLGS's first stage is skipped (solve()); NLGS is not a challenger
+  /// (challenger(): its rate shows only after ~10 memory-bound sweeps, and its first budget
+  /// is the cold step's remembered work: at 10⁵ spheres its challenge at step 2 took 0.92 s
+  /// for 65 sweeps that missed, against 0.3–0.4 s for APGD's whole warm solve); and a warm
+  /// start that APGD accepts is the answer, as with `apgd` alone, without the NLGS sweeps
+  /// of sweep_accepted_warm_start() (their records packed, 9 MB at 10⁴ spheres, and up to
+  /// `check_every` sweeps: 10⁴ spheres, 50 steps, warm step 22.9 → 18.7 ms). NLGS stays a
+  /// member of the slices.
+  bool beyond_caches() const { return bodies_ && !records_fit_; }
   /// The start's error before the slices (nlgs_sweeps = 0, or records beyond the caches).
   /// Without NLGS's records APGD measures it (it packs its product for its first slice
   /// anyway; that slice then continues from it): one product instead of two.
@@ -695,6 +706,7 @@ class Auto : public Solver {
     int best = -1;
     for (int k = 0; k < member_count; ++k) {
       if (k == inc || !m[k].available || memory_[k].next_probe > solve_index_) continue;
+      if (k == nlgs_member && beyond_caches()) continue;  // its rate shows after ~10 sweeps (beyond_caches())
       if (k == newton_member) continue;  // from the best iterate: only useful after another member
       // Its first iterations' work per contact: remembered, or estimated for one not yet
       // tried (Newton and ADMM: a factorisation each; on light steps more than a whole solve).
