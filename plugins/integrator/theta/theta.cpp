@@ -41,6 +41,7 @@ class Theta : public Integrator {
       if (!st.has(R::nodes, f))
         throw InputError("/time/integrator", "the theta integrator works on rigid bodies: modelization \"" +
                                                  model.node_set() + "\" has no rigid field '" + f + "'");
+    inverse_fields_ = InverseFields::of(st);
   }
 
   void free_velocity(StepContext& c) override {
@@ -104,17 +105,18 @@ class Theta : public Integrator {
   bool compact_inverse(const State& st, std::size_t body, double* M) const override {
     const int d = st.dimension();
     const int k = d == 2 ? 3 : 6;
-    const std::size_t b = st.body(body).first_node;
+    const InverseFields f = &st == inverse_fields_.state ? inverse_fields_ : InverseFields::of(st);
+    const auto b = static_cast<std::size_t>(f.first_node->data()[body]);  // st.body(body).first_node
     for (int i = 0; i < k * k; ++i) M[i] = 0;
-    const double im = st.field(R::nodes, R::inverse_mass).row(b)[0];
+    const double im = f.inverse_mass->row(b)[0];
     if (im == 0) return true;  // fixed
-    const double* ii = st.field(R::nodes, R::inverse_inertia).row(b).data();
+    const double* ii = f.inverse_inertia->row(b).data();
     for (int i = 0; i < d; ++i) M[i * k + i] = im;
     if (d == 2) {
       M[8] = ii[0];
     } else {
       double Rm[9], A[9], Iw[9];
-      quat_to_matrix(st.field(R::nodes, R::orientation).row(b, Depth::begin).data(), Rm);
+      quat_to_matrix(f.orientation->row(b, Depth::begin).data(), Rm);
       // Iw = R I⁻¹ Rᵀ
       const double S[9] = {ii[0], ii[3], ii[4], ii[3], ii[1], ii[5], ii[4], ii[5], ii[2]};
       for (int i = 0; i < 3; ++i)
@@ -125,8 +127,8 @@ class Theta : public Integrator {
         for (int j = 0; j < 3; ++j) M[(3 + i) * k + 3 + j] = Iw[i * 3 + j];
     }
     // An imposed component has infinite mass: no impulse changes it.
-    if (const Field* f = st.set(R::nodes).find(R::imposed_velocity)) {
-      const double* imp = f->row(b).data();
+    if (f.imposed) {
+      const double* imp = f.imposed->row(b).data();
       for (int i = 0; i < k; ++i)
         if (!std::isnan(imp[i]))
           for (int j = 0; j < k; ++j) M[i * k + j] = M[j * k + i] = 0;
@@ -147,6 +149,29 @@ class Theta : public Integrator {
   }
 
  private:
+  /// The fields compact_inverse() reads for every body a contact touches, resolved once
+  /// (prepare) instead of looked up by name at each call: st.body() and four field lookups
+  /// a body were about a sixth of a 10⁴-sphere step's assembly. A Field keeps its address
+  /// for its State's life (EntitySet holds them in a deque); its buffers do not (depths
+  /// swap), so data() is asked at each call. Another State (none in a run) is looked up.
+  struct InverseFields {
+    const State* state = nullptr;
+    const Field *first_node = nullptr, *inverse_mass = nullptr, *inverse_inertia = nullptr, *orientation = nullptr,
+                *imposed = nullptr;
+    static InverseFields of(const State& st) {
+      const EntitySet& s = st.set(R::nodes);
+      InverseFields f;
+      f.state = &st;
+      f.first_node = &st.set(sets::bodies).field(body_fields::first_node);
+      f.inverse_mass = &s.field(R::inverse_mass);
+      f.inverse_inertia = &s.field(R::inverse_inertia);
+      if (st.dimension() == 3) f.orientation = &s.field(R::orientation);
+      f.imposed = s.find(R::imposed_velocity);  // only with drivers or hooks (Needed::imposed)
+      return f;
+    }
+  };
+  InverseFields inverse_fields_;
+
   static double* ptr(State& st, const char* name, Depth d = Depth::end) {
     Field* f = st.set(R::nodes).find(name);
     return f ? f->data(d) : nullptr;
