@@ -24,7 +24,11 @@ void project_all(const LocalProblem& P, const Eigen::VectorXd& x, Eigen::VectorX
 /// folded in (scaled_factor.hpp) for rigid bodies, else by multiply_w.
 class WProduct {
  public:
-  explicit WProduct(const LocalProblem& P) : P_(P), through_factor_(P.W.rows() != P.q.size() && P.factor.present()) {
+  /// The products of P from now on (its factor packed when they go through it; the packed
+  /// arrays of an earlier problem are reused).
+  void bind(const LocalProblem& P) {
+    P_ = &P;
+    through_factor_ = P.W.rows() != P.q.size() && P.factor.present();
     scaled_ = through_factor_ && scaled_factor_.prepare(P.dim, P.factor);
   }
   bool through_factor() const { return through_factor_; }
@@ -32,23 +36,23 @@ class WProduct {
 
   void apply(const Eigen::VectorXd& x, Eigen::VectorXd& out) {
     if (!through_factor_) {
-      out = P_.W * x;
+      out = P_->W * x;
       return;
     }
     if (scaled_) {
       scaled_factor_.multiply(x, out);
       return;
     }
-    multiply_w(P_.dim, P_.factor, x, out, impulse_, dv_);
+    multiply_w(P_->dim, P_->factor, x, out, impulse_, dv_);
   }
 
   /// W's diagonal.
   Eigen::VectorXd diagonal() const {
-    if (!through_factor_) return P_.W.diagonal();
+    if (!through_factor_) return P_->W.diagonal();
     if (scaled_) return scaled_factor_.diagonal();
-    const BodyFactor& f = P_.factor;
-    const int d = P_.dim, k = f.k;
-    Eigen::VectorXd w = Eigen::VectorXd::Zero(P_.q.size());
+    const BodyFactor& f = P_->factor;
+    const int d = P_->dim, k = f.k;
+    Eigen::VectorXd w = Eigen::VectorXd::Zero(P_->q.size());
     for (std::size_t a = 0; a < f.body.size() / 2; ++a)
       for (int side = 0; side < 2; ++side) {
         const int b = f.body[2 * a + side];
@@ -67,8 +71,8 @@ class WProduct {
   }
 
  private:
-  const LocalProblem& P_;
-  bool through_factor_, scaled_ = false;
+  const LocalProblem* P_ = nullptr;
+  bool through_factor_ = false, scaled_ = false;
   ScaledFactor scaled_factor_;
   std::vector<double> impulse_, dv_;
 };
@@ -174,10 +178,15 @@ double extrapolate(Eigen::Index nc, const double* mu, double beta, const double*
 /// The products by W of one problem and what depends on W only: the scaling D (per
 /// contact: a scalar, its mean diagonal of W; or, `Scaling::normal_tangent`, its normal
 /// diagonal entry and the mean of its tangential ones) and the cost of a product. Packed
-/// once per problem, kept in State::products for later calls on the same problem.
+/// once per problem, kept in State::products for later calls on the same problem; a call
+/// on another problem packs it into the same arrays (prepare()).
 class Products {
  public:
-  Products(const LocalProblem& P, Scaling scaling) : problem(&P), W(P), scaling(scaling) {
+  Products(const LocalProblem& P, Scaling sc) { prepare(P, sc); }
+  void prepare(const LocalProblem& P, Scaling sc) {
+    problem = &P;
+    scaling = sc;
+    W.bind(P);
     const int d = P.dim;
     const Eigen::Index nc = P.contacts(), n = d * nc;
     const Eigen::VectorXd diag = W.diagonal();
@@ -212,11 +221,13 @@ class Products {
   bool of(const LocalProblem& P, Scaling sc) const { return scaling == sc && of(P); }
   bool split() const { return scaling == Scaling::normal_tangent; }
 
-  const LocalProblem* problem;
+  const LocalProblem* problem = nullptr;
   WProduct W;
-  Scaling scaling;
+  Scaling scaling = Scaling::contact;
   Eigen::VectorXd s;  ///< the scaling D per contact (projected_step: 1 or 3 values a contact)
   WorkCosts cost;
+  /// solve()'s work vectors beside the state's x, y, W x, W y (kept for their memory).
+  Eigen::VectorXd xn, Wxn, g, dl, Wd, best;
 };
 
 bool velocities(const State& state, const LocalProblem& P, const Eigen::VectorXd& x, Eigen::VectorXd& u) {
@@ -243,23 +254,32 @@ SolverReport solve(const LocalProblem& P, const Options& o, Eigen::VectorXd& r, 
   }
   std::unique_ptr<Products> kept;
   const bool packed = o.state && o.same_problem && o.state->products && o.state->products->of(P, o.scaling);
-  if (packed)
+  if (packed) {
     kept = std::move(o.state->products);
-  else
+  } else if (o.state && o.state->products) {  // another problem: packed into the last one's arrays
+    kept = std::move(o.state->products);
+    kept->prepare(P, o.scaling);
+  } else {
     kept = std::make_unique<Products>(P, o.scaling);
+  }
   WProduct& W = kept->W;
   const double* scale = kept->s.data();
   const bool split = kept->split();
   const WorkCosts& cost = kept->cost;
 
-  Eigen::VectorXd x(n), Wx(n), y(n), Wy(n), xn(n), Wxn(n), g(n), dl(n), Wd(n), best;
+  // The run's vectors: the kept state's and the products' (the last solve's memory, every
+  // entry written before it is read).
+  Eigen::VectorXd x, Wx, y, Wy;
+  Eigen::VectorXd &xn = kept->xn, &Wxn = kept->Wxn, &g = kept->g, &dl = kept->dl, &Wd = kept->Wd, &best = kept->best;
+  if (o.state) x.swap(o.state->x), y.swap(o.state->y), Wx.swap(o.state->Wx), Wy.swap(o.state->Wy);
+  const bool resume = o.resume && o.state && x.size() == n;
+  for (Eigen::VectorXd* v : {&x, &Wx, &y, &Wy, &xn, &Wxn, &g, &dl, &Wd}) v->resize(n);
   double L = 1, theta = 1;
   WorkMeter meter(o.max_work, o.work);
-  const bool resume = o.resume && o.state && o.state->x.size() == n;
   double best_err = -1;
   if (resume) {
-    State& st = *o.state;
-    x.swap(st.x), y.swap(st.y), Wx.swap(st.Wx), Wy.swap(st.Wy), L = st.L, theta = st.theta;
+    const State& st = *o.state;
+    L = st.L, theta = st.theta;
     best_err = st.err;
   } else {
     project_all(P, r, x);

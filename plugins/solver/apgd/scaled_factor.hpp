@@ -20,7 +20,8 @@ class ScaledFactor {
  public:
   /// Packs f (rigid bodies: d = 2, k = 3 or d = 3, k = 6). False, with nothing packed,
   /// for another shape or when an inverse mass is not positive semi-definite to rounding
-  /// (L Lᵀ would not give it back): the caller then multiplies with multiply_w.
+  /// (L Lᵀ would not give it back): the caller then multiplies with multiply_w. A later
+  /// call packs another problem into the same arrays (their memory kept).
   bool prepare(int d, const BodyFactor& f);
   /// out = W x (sizes d·nc).
   void multiply(const Eigen::VectorXd& x, Eigen::VectorXd& out);
@@ -36,6 +37,10 @@ class ScaledFactor {
   std::vector<int> body_;       ///< nc × 2: the moving body's compact index, −1 for a fixed body
   std::vector<double> z_;       ///< moving bodies × k: H̃ᵀ x (scratch)
   std::vector<double> diag_;    ///< d·nc or empty: the compliance
+  // prepare()'s scratch, kept with its capacity for the next problem
+  std::vector<int> compact_;    ///< per body of the factor: its compact index, −1 when no contact moves it
+  std::vector<double> L_;       ///< per moving body: its factor L (k × k, row-major, lower)
+  std::vector<char> diagonal_;  ///< per moving body: L is diagonal
 };
 
 }  // namespace moreau::apgd
