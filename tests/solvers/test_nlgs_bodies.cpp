@@ -11,6 +11,7 @@
 
 #include "apgd_core.hpp"
 #include "factored_problem.hpp"
+#include "rigid_frames.hpp"
 #include "scaled_factor.hpp"
 #include "sim.hpp"
 
@@ -247,6 +248,106 @@ moreau::LocalProblem varied_problem(int d, unsigned seed, bool compliance) {
   }
   P.W = moreau::assemble_w(d, f);
   return P;
+}
+
+/// A 3D rigid-body problem in the form the time-stepper gives it: per contact an
+/// orthonormal frame E (rows n, t, s) at a point p; per side the block ±[E, rows r × e_i],
+/// r = p − c the lever arm from the body's centre c (the second side negated); inverse
+/// masses 1/m I₃ ⊕ R I⁻¹ Rᵀ (R a rotation: symmetric to rounding only, as the integrator
+/// gives them); bodies 0 and 1 fixed; optionally the laws' compliance.
+moreau::LocalProblem rigid_frames_problem(unsigned seed, bool compliance) {
+  const int nb = 8, fixed = 2, nc = 16, k = 6;
+  std::mt19937 rng(seed);
+  std::uniform_real_distribution<double> U(-1, 1);
+  moreau::LocalProblem P;
+  P.dim = 3;
+  auto& f = P.factor;
+  f.k = k;
+  f.inverse_mass.assign(static_cast<std::size_t>(nb * k * k), 0.0);
+  std::vector<Eigen::Vector3d> centre(nb);
+  for (int b = 0; b < nb; ++b) {
+    centre[b] = Eigen::Vector3d(U(rng), U(rng), U(rng));
+    if (b < fixed) continue;
+    const Eigen::Matrix3d R = Eigen::Quaterniond(U(rng), U(rng), U(rng), U(rng)).normalized().toRotationMatrix();
+    const Eigen::Vector3d I(1.5 + U(rng), 1.5 + U(rng), 1.5 + U(rng));
+    const Eigen::Matrix3d Rs = R * I.cwiseInverse().asDiagonal();
+    Eigen::Matrix3d Iw;  // R I⁻¹ Rᵀ, summed in the integrator's order (symmetric to rounding)
+    for (int i = 0; i < 3; ++i)
+      for (int j = 0; j < 3; ++j) Iw(i, j) = Rs(i, 0) * R(j, 0) + Rs(i, 1) * R(j, 1) + Rs(i, 2) * R(j, 2);
+    double* M = &f.inverse_mass[static_cast<std::size_t>(b * k * k)];
+    const double im = 0.5 + 0.25 * (U(rng) + 1);
+    for (int i = 0; i < 3; ++i) M[i * k + i] = im;
+    for (int i = 0; i < 3; ++i)
+      for (int j = 0; j < 3; ++j) M[(3 + i) * k + 3 + j] = Iw(i, j);
+  }
+  f.body.resize(2 * nc);
+  f.H.resize(static_cast<std::size_t>(nc * 2 * 3 * k));
+  for (int a = 0; a < nc; ++a) {
+    const int b0 = fixed + static_cast<int>(rng() % static_cast<unsigned>(nb - fixed));
+    int b1 = static_cast<int>(rng() % static_cast<unsigned>(nb));
+    if (b1 == b0) b1 = (b0 + 1) % nb;
+    const Eigen::Matrix3d E = Eigen::Quaterniond(U(rng), U(rng), U(rng), U(rng)).normalized().toRotationMatrix().transpose();
+    const Eigen::Vector3d p(U(rng), U(rng), U(rng));
+    const int bs[2] = {b0, b1};
+    for (int s = 0; s < 2; ++s) {
+      f.body[2 * a + s] = bs[s] < fixed ? -1 : bs[s];
+      const Eigen::Vector3d r = p - centre[bs[s]];
+      const double sign = s == 0 ? 1.0 : -1.0;
+      double* h = &f.H[static_cast<std::size_t>((a * 2 + s) * 3 * k)];
+      for (int i = 0; i < 3; ++i) {
+        const Eigen::Vector3d e = E.row(i).transpose(), c = r.cross(e);
+        for (int j = 0; j < 3; ++j) h[i * k + j] = sign * e[j], h[i * k + 3 + j] = sign * c[j];
+      }
+    }
+  }
+  if (compliance) {
+    f.diagonal.resize(3 * nc);
+    for (std::size_t i = 0; i < f.diagonal.size(); ++i) f.diagonal[i] = 0.01 * static_cast<double>(1 + i % 3);
+  }
+  P.W = moreau::assemble_w(3, f);
+  P.q.resize(3 * nc);
+  for (int a = 0; a < nc; ++a) {
+    P.q[3 * a] = -0.5 - 0.5 * (U(rng) + 1);  // approaching
+    P.q[3 * a + 1] = U(rng), P.q[3 * a + 2] = U(rng);
+  }
+  P.mu = Eigen::VectorXd::Constant(nc, 0.3);
+  return P;
+}
+
+TEST(ApgdFactored, RigidFramesMultiplyByW) {
+  // APGD's product packed from the frames and lever arms of 3D rigid bodies (15 doubles a
+  // contact: rigid_frames.hpp) against W assembled from the factor, with fixed bodies and
+  // the compliance; to rounding. A factor of another form (random H blocks, locked
+  // rotations) is not packed that way.
+  for (unsigned seed : {41u, 42u, 43u})
+    for (bool compliance : {false, true}) {
+      const auto P = rigid_frames_problem(seed, compliance);
+      moreau::apgd::RigidFrames F;
+      ASSERT_TRUE(F.prepare(3, P.factor));
+      std::mt19937 rng(seed);
+      std::uniform_real_distribution<double> U(-1, 1);
+      const Eigen::VectorXd x = Eigen::VectorXd::NullaryExpr(P.q.size(), [&] { return U(rng); });
+      Eigen::VectorXd out;
+      F.multiply(x, out);
+      const Eigen::VectorXd want = P.W * x;
+      EXPECT_LT((out - want).norm(), 1e-13 * (1 + want.norm())) << "seed " << seed;
+      EXPECT_LT((F.diagonal() - Eigen::VectorXd(P.W.diagonal())).norm(), 1e-13 * (1 + want.norm()));
+      EXPECT_GT(want.norm(), 0.1);
+    }
+  moreau::apgd::RigidFrames F;
+  EXPECT_FALSE(F.prepare(3, varied_problem(3, 31, false).factor));
+  auto locked = rigid_frames_problem(44, false);
+  locked.factor.inverse_mass[static_cast<std::size_t>(locked.factor.body[0] * 36)] = 0;  // contact 0's first body: x locked
+  EXPECT_FALSE(F.prepare(3, locked.factor));
+  auto bent = rigid_frames_problem(45, false);
+  bent.factor.H[3] += 1e-6;  // contact 0, side 0: a rotational entry off r × n
+  EXPECT_FALSE(F.prepare(3, bent.factor));
+  EXPECT_FALSE(F.prepare(2, varied_problem(2, 31, false).factor));
+}
+
+TEST(ApgdFactored, RigidFramesSameAnswerAsWithW) {
+  // End to end: APGD through the rigid-frame product reaches W's answer.
+  for (bool compliance : {false, true}) apgd_same_answer_through_the_factor(rigid_frames_problem(46, compliance));
 }
 
 TEST(ApgdFactored, PackedScaledFactorMultipliesByW) {

@@ -1,6 +1,7 @@
 #include "apgd_core.hpp"
 
 #include "../work.hpp"
+#include "rigid_frames.hpp"
 #include "scaled_factor.hpp"
 
 #include <cmath>
@@ -20,8 +21,9 @@ void project_all(const LocalProblem& P, const Eigen::VectorXd& x, Eigen::VectorX
 }
 /// Products by W: by the matrix when given, else through its factor W = H M⁻¹ Hᵀ (the
 /// time-stepper's form, which `auto` passes without assembling W: for 10⁵ spheres W has
-/// ~3·10⁷ entries, the factor's H blocks a tenth of that), packed with the inverse masses
-/// folded in (scaled_factor.hpp) for rigid bodies, else by multiply_w.
+/// ~3·10⁷ entries, the factor's H blocks a tenth of that): for 3D rigid bodies packed as
+/// frames and lever arms (rigid_frames.hpp: 15 doubles a contact), for other rigid bodies
+/// with the inverse masses folded in (scaled_factor.hpp), else by multiply_w.
 class WProduct {
  public:
   /// The products of P from now on (its factor packed when they go through it; the packed
@@ -29,14 +31,20 @@ class WProduct {
   void bind(const LocalProblem& P) {
     P_ = &P;
     through_factor_ = P.W.rows() != P.q.size() && P.factor.present();
-    scaled_ = through_factor_ && scaled_factor_.prepare(P.dim, P.factor);
+    frames_ = through_factor_ && rigid_frames_.prepare(P.dim, P.factor);
+    scaled_ = through_factor_ && !frames_ && scaled_factor_.prepare(P.dim, P.factor);
   }
   bool through_factor() const { return through_factor_; }
-  bool scaled() const { return scaled_; }
+  /// Packed (rigid frames or H̃): its cost model (WorkCosts::scaled_factor_product).
+  bool scaled() const { return scaled_ || frames_; }
 
   void apply(const Eigen::VectorXd& x, Eigen::VectorXd& out) {
     if (!through_factor_) {
       out = P_->W * x;
+      return;
+    }
+    if (frames_) {
+      rigid_frames_.multiply(x, out);
       return;
     }
     if (scaled_) {
@@ -49,6 +57,7 @@ class WProduct {
   /// W's diagonal.
   Eigen::VectorXd diagonal() const {
     if (!through_factor_) return P_->W.diagonal();
+    if (frames_) return rigid_frames_.diagonal();
     if (scaled_) return scaled_factor_.diagonal();
     const BodyFactor& f = P_->factor;
     const int d = P_->dim, k = f.k;
@@ -72,7 +81,8 @@ class WProduct {
 
  private:
   const LocalProblem* P_ = nullptr;
-  bool through_factor_ = false, scaled_ = false;
+  bool through_factor_ = false, scaled_ = false, frames_ = false;
+  RigidFrames rigid_frames_;  ///< 3D rigid bodies (rigid_frames.hpp)
   ScaledFactor scaled_factor_;
   std::vector<double> impulse_, dv_;
 };
