@@ -113,13 +113,27 @@ void ContactStages::detection_configuration(StepContext& c) {
 
 void ContactStages::broad_phase(StepContext&) { broadphase->pairs(bp_, pairs_); }
 
+void ContactStages::index_shape_kinds() {
+  std::vector<std::string> names;
+  shape_kind_.resize(contactors.size());
+  for (std::size_t i = 0; i < contactors.size(); ++i) {
+    const std::string name = contactors[i].shape->shape_name();
+    const auto at = std::find(names.begin(), names.end(), name);
+    shape_kind_[i] = static_cast<int>(at - names.begin());
+    if (at == names.end()) names.push_back(name);
+  }
+  kinds_ = names.size();
+  kind_detector_.resize(kinds_ * kinds_);
+  for (std::size_t a = 0; a < kinds_; ++a)
+    for (std::size_t b = 0; b < kinds_; ++b) kind_detector_[a * kinds_ + b] = detector_for(names[a], names[b]);
+}
+
 void ContactStages::narrow_phase(StepContext& c) {
   const int d = c.state.dimension();
   contacts_.clear();
+  if (shape_kind_.size() != contactors.size()) index_shape_kinds();  // contactors are built once
   for (auto [i, j] : pairs_) {
-    const Contactor& a = contactors[i];
-    const Contactor& b = contactors[j];
-    const DetectorUse* use = detector_for(a.shape->shape_name(), b.shape->shape_name());
+    const DetectorUse* use = kind_detector_[static_cast<std::size_t>(shape_kind_[i]) * kinds_ + static_cast<std::size_t>(shape_kind_[j])];
     if (!use) continue;  // every pair of interacting shape names has a detector (checked at build)
     const int first = use->swap ? j : i, second = use->swap ? i : j;
     const Contactor& f = contactors[first];

@@ -110,6 +110,12 @@ class ContactStages {
     double start_gap = 0;  ///< gap at the start configuration, where known (else the point's gap)
   };
   const DetectorUse* detector_for(const std::string& a, const std::string& b) const;
+  /// Numbers the contactors' shape names and finds the detector of each ordered pair of
+  /// them once (narrow_phase), instead of comparing names for every pair of every step.
+  void index_shape_kinds();
+  std::vector<int> shape_kind_;                     ///< per contactor: the index of its shape name
+  std::vector<const DetectorUse*> kind_detector_;   ///< kinds × kinds: detector_for() of the two names
+  std::size_t kinds_ = 0;
   /// Pose of contactor i for its detector (a facet's: its nodes).
   Pose pose_of(std::size_t i) const;
   /// Of the contacts between one contactor and the facets of one body, keeps the nearest.
