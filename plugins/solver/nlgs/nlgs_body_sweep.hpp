@@ -52,6 +52,7 @@ class BodySweeper {
   bool iso_ = false;          ///< every moving body's M⁻¹ is one scalar per block: records keep those, not G
   int off_H_ = 0, off_G_ = 0; ///< where H₀ and G₀ start in a record
   std::size_t stride_ = 0;    ///< doubles per record
+  std::vector<char> layout_checked_;  ///< layout()'s scratch: per body, its inverse mass checked
   /// Per contact: A (pd×pd), q (pd), μ, [iso: m_t m_r of each side], H₀ H₁ (pd×pk),
   /// [not iso: G₀ G₁ = M⁻¹Hᵀ (pk×pd)].
   std::vector<double> rec_;
