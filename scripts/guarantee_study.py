@@ -11,14 +11,18 @@ and `auto` does not, or auto's work exceeds k times the least work of a member t
 reaches it.
 
     python3 scripts/guarantee_study.py [--moreau build/bin/moreau] [--corpus build/corpus]
-        [--tolerances 1e-4 1e-8] [--k 8.3] [--jobs 2] [--csv build/guarantee.csv]
+        [--tolerances 1e-4 1e-8] [--k K] [--jobs 2] [--csv build/guarantee.csv]
 
-About 2 minutes on 2 cores for the reduced corpus (129 problems).
+--k defaults to the stated k, read from the one place that states it: `stated_k` in
+tests/solvers/test_auto_guarantee.cpp (the ctest AutoGuarantee.* checks the same k on its
+pairs). About 90 s on 2 cores for the reduced corpus (129 problems, 258 pairs), plus ~10 s
+to make the corpus when --corpus has none.
 """
 import argparse
 import concurrent.futures
 import json
 import os
+import re
 import statistics
 import subprocess
 import sys
@@ -28,6 +32,19 @@ REPO = os.path.dirname(HERE)
 MEMBERS = ["nlgs", "apgd", "newton", "admm"]
 # auto's caps (its schema's fallbacks): max_iterations for NLGS, APGD and ADMM, Newton's own.
 MAX_ITER, NEWTON_MAX_ITER = 20000, 200
+# The stated k lives in the guarantee's ctest (one place for both).
+GUARANTEE_TEST = os.path.join(REPO, "tests", "solvers", "test_auto_guarantee.cpp")
+
+
+def stated_k():
+    try:
+        with open(GUARANTEE_TEST) as f:
+            m = re.search(r"constexpr double stated_k = ([0-9.eE+-]+);", f.read())
+    except OSError as e:
+        fail(f"cannot read the stated k from {GUARANTEE_TEST}: {e}")
+    if not m:
+        fail(f"no `constexpr double stated_k = ...;` in {GUARANTEE_TEST}")
+    return float(m.group(1))
 
 
 def fail(msg):
@@ -58,10 +75,13 @@ def main():
     ap.add_argument("--shared", default=os.path.join(os.path.dirname(REPO), "shared", "fclib"),
                     help="the shared FCLib files (skipped if the folder does not exist)")
     ap.add_argument("--tolerances", nargs="+", type=float, default=[1e-4, 1e-8])
-    ap.add_argument("--k", type=float, default=8.3, help="the stated k (docs/solvers.md \"Guarantee\")")
+    ap.add_argument("--k", type=float, help="the k to check (default: the stated k, `stated_k` in "
+                    "tests/solvers/test_auto_guarantee.cpp; docs/solvers.md \"Guarantee\")")
     ap.add_argument("--jobs", type=int, default=2)
     ap.add_argument("--csv", help="write every pair's figures there")
     a = ap.parse_args()
+    if a.k is None:
+        a.k = stated_k()
     if not os.path.exists(a.moreau):
         fail(f"no moreau executable at {a.moreau}")
     if a.jobs < 1 or a.k <= 0:
@@ -94,7 +114,8 @@ def main():
             by_auto += au["converged"]
             row = {"problem": name, "tolerance": tol, "auto_work": au["work"], "auto_converged": au["converged"],
                    "least": reached[0][1] if reached else "", "least_work": reached[0][0] if reached else "",
-                   "ratio": ""}
+                   "ratio": "", "members": ",".join(f"{by[(c, tol, m)]['work']:.6g},{str(by[(c, tol, m)]['converged']).lower()}"
+                                                    for m in MEMBERS)}
             if reached:
                 some += 1
                 ratio = au["work"] / reached[0][0]
@@ -122,10 +143,11 @@ def main():
               f"1.5x {within(1.5, dominant)}")
     if a.csv:
         with open(a.csv + ".tmp", "w") as f:
-            f.write("problem,tolerance,least,least_work,auto_work,auto_converged,ratio\n")
+            f.write("problem,tolerance,least,least_work,auto_work,auto_converged,ratio,"
+                    + ",".join(f"{m}_work,{m}_converged" for m in MEMBERS) + "\n")
             for r in rows:
                 f.write(f"{r['problem']},{r['tolerance']:g},{r['least']},{r['least_work']},{r['auto_work']},"
-                        f"{str(r['auto_converged']).lower()},{r['ratio']}\n")
+                        f"{str(r['auto_converged']).lower()},{r['ratio']},{r['members']}\n")
         os.replace(a.csv + ".tmp", a.csv)
     for b in broken:
         print("BROKEN: " + b)

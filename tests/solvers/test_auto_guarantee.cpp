@@ -15,15 +15,17 @@ using namespace solver_cases;
 
 namespace {
 
-/// The k that auto achieves (docs/solvers.md "Guarantee"). By construction (the floor,
-/// plugins/solver/auto/floor.hpp) auto's work is at most K·(L + s) + one slice, K = 8 with
-/// a factorisation (4 without), L the least work of a member alone and s one of its
-/// iterations. Measured on the whole reduced corpus (scripts/guarantee_study.py, 258 pairs)
-/// and on this test's pairs, the worst is 10.45: masonry_arch_2d step 5 warm at 1e-8,
-/// where Newton alone converges in one step (s = L: the floor pays a member's next
-/// iteration once it fits in its share, so K·2L is its bound); the 1.5 % above it allow
-/// for another compiler's rounding moving an iteration count. Fails with 10.4.
-constexpr double stated_k = 10.6;
+/// The k that auto achieves (docs/solvers.md "Guarantee"; scripts/guarantee_study.py reads
+/// its default --k here). By construction (the floor, plugins/solver/auto/floor.hpp) auto's
+/// work is at most K·(L + s) + one slice, K = 8 with a factorisation (4 without), L the
+/// least work of a member alone and s one of its iterations. Measured on the whole reduced
+/// corpus (scripts/guarantee_study.py, 258 pairs) the worst is 8.09: the shared
+/// spheres-in-a-box problem at 1e-4 (APGD alone in 418 steps; auto pays NLGS's first
+/// stage, Newton's and ADMM's probes), also this test's worst pair; at 1e-8 7.86 (brick wall,
+/// step 100, warm). The masonry arch's step 5 (warm, 1e-8, Newton in one step), the worst
+/// before rule 2b (10.45), is now 1.49. The 1.4 % above 8.09 allow for another compiler's
+/// rounding moving an iteration count. Fails with 8.0.
+constexpr double stated_k = 8.2;
 
 /// auto's members, each run alone with auto's caps (max_iterations 20000; Newton:
 /// newton_max_iterations 200, `newton`'s own default, each step a factorisation).
