@@ -21,7 +21,10 @@ TEST(Auto, WarmStartAndEdgeCases) { warm_start("auto"); }
 
 TEST(Auto, CountsTheIterationsOfEveryStage) {
   // The local FCLib test problem: NLGS stagnates, Newton finishes; the iterations reported
-  // are more than the NLGS sweeps alone and at most the budget.
+  // are more than the NLGS sweeps alone, and bounded: mostly the cheap sweeps and steps of
+  // NLGS's and APGD's own runs, which the floor keeps at 1/5 of the work each
+  // (plugins/solver/auto/floor.hpp) while Newton converges in 14 steps (1118 in all; 1/8
+  // each before, under 1000).
   auto prob = moreau::fclib::read(shared("fclib-local_problem_test.hdf5"));
   auto s = make("auto", {{"tolerance", 1e-8}, {"max_iterations", 100000}, {"nlgs_sweeps", 20}});
   Eigen::VectorXd r, u;
@@ -29,7 +32,7 @@ TEST(Auto, CountsTheIterationsOfEveryStage) {
   expect_honest(prob.local, r, u, rep, 1e-8, "auto");
   EXPECT_TRUE(rep.converged);
   EXPECT_GT(rep.iterations, 20);
-  EXPECT_LT(rep.iterations, 1000);
+  EXPECT_LT(rep.iterations, 2000);
 }
 
 TEST(Auto, SharedFclibProblems) {

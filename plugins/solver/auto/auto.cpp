@@ -29,11 +29,15 @@
 //    from the best iterate; Newton's own run and ADMM continue their own runs from the warm
 //    start as each would alone (Newton with its line search's memory), since Newton from
 //    NLGS's iterate can crawl.
+//    Given W, a warm start within 1e-3 of the answer: Newton's own run takes one step first
+//    once NLGS's first stage says it needs more than a step, and goes on while each step
+//    gains 10× (newton_first()).
 // 3. The answer is the best iterate of all; the solve ends at the tolerance, when every
 //    member has used `max_iterations` of its own (Newton at most `newton_max_iterations`),
 //    or (in a time step) had three slices in a row that gained less than 1 %. For a problem
 //    given with W, a floor under the slices (floor.hpp) bounds auto's work by K times the
-//    least member's (+ one of its iterations and one slice) and gives up no member's own run
+//    least member's (K = 5 for NLGS and APGD, 8 for Newton and ADMM, 4 without a
+//    factorisation; + one of its iterations and one slice) and gives up no member's own run
 //    before its cap, so auto reaches whatever a member reaches alone.
 // docs/solvers.md states the rule and the guarantee measured on the corpus.
 #include <time.h>
@@ -253,11 +257,11 @@ class Auto : public Solver {
     nlgs_run_sweeps_ = 0;
     own_ = {};
     newton_step_ = 0;
-    floor_k_ = auto_floor::floor_k(direct ? 4 : 2);
+    floor_k_ = {auto_floor::member_k(direct, false), auto_floor::member_k(direct, true)};
     // Problems given with W (FCLib): the floor from the first stage on. In a time step (W
     // through the bodies) NLGS's first stage or the incumbent's slice is the first slice,
     // the floor acting from the slices on (a step that NLGS finishes costs what `nlgs` costs).
-    first_stage_cap_ = bodies_ ? inf : floor_k_ * first_floor_step(direct);
+    first_stage_cap_ = bodies_ ? inf : first_stage_cap(direct);
 
     auto finish = [&]() {
       if (!std::isfinite(best_err_)) best_ = start_;  // no iterate was ever evaluated
@@ -371,20 +375,22 @@ class Auto : public Solver {
       f[k].in = o.iterations < max_it_;
       f[k].spent = o.spent;
       f[k].step = iteration_work(k, o.per_iteration);
+      f[k].k = floor_k_[0];
     }
     for (int k : {newton_start_member, admm_member}) {
       const MemberState& s = m[k];
       f[k].in = s.available && s.iterations < member_max(k);
       f[k].spent = s.spent;
       f[k].step = iteration_work(k, s.per_iteration);
+      f[k].k = floor_k_[1];
     }
     return f;
   }
-  /// The least first iteration of a floor member other than NLGS: NLGS's first stage ends
-  /// once the work reaches K times it, as every choice of the slices does (floor.hpp).
-  double first_floor_step(bool direct) const {
-    double s = iteration_work(apgd_member, 0);
-    if (direct) s = std::min(s, iteration_work(admm_member, 0));  // (Newton's probe is 4 of them)
+  /// The work at which NLGS's first stage ends: the least K·s over the other floor members
+  /// (s their first iteration, K theirs), as every choice of the slices (floor.hpp).
+  double first_stage_cap(bool direct) const {
+    double s = floor_k_[0] * iteration_work(apgd_member, 0);
+    if (direct) s = std::min(s, floor_k_[1] * iteration_work(admm_member, 0));  // (Newton's probe is 4 of them)
     return s;
   }
   /// The work of one iteration of member k: `measured` on this problem when known, else its
@@ -427,7 +433,7 @@ class Auto : public Solver {
     }
     auto floor_runs_but = runs;
     if (own >= 0) floor_runs_but[own].in = false;  // its own run grows with the slice
-    const int f = auto_floor::behind(floor_runs_but, work_ + upcoming, floor_k_);
+    const int f = auto_floor::behind(floor_runs_but, work_ + upcoming);
     if (f >= 0 || who < 0) {
       int k = f;
       if (k < 0)  // the rule has none: the floor member with the least work
@@ -435,7 +441,7 @@ class Auto : public Solver {
           if (runs[i].in && (k < 0 || runs[i].spent < runs[k].spent)) k = i;
       if (k < 0) return false;
       exploring_ = -1;
-      const double b = std::max((work_ + upcoming) / floor_k_ - runs[k].spent, runs[k].step);
+      const double b = std::max((work_ + upcoming) / runs[k].k - runs[k].spent, runs[k].step);
       if (k == nlgs_member || k == apgd_member)
         own_slice(k, b);
       else
@@ -444,7 +450,7 @@ class Auto : public Solver {
     }
     // Its budget: the rule's (the work spent so far, or a quarter for a probe), within the
     // room the floor leaves (at least its least slice, which the floor has paid ahead for).
-    budget = std::max(std::min(budget, auto_floor::room(runs, work_, floor_k_, own)), upcoming);
+    budget = std::max(std::min(budget, auto_floor::room(runs, work_, own)), upcoming);
     if (newton_now) {
       exploring_ = -1;
       const double from = m[who].slices ? m[who].own_err : start_err_;
@@ -1091,7 +1097,7 @@ class Auto : public Solver {
 
   int winner_ = -1;             ///< the member whose run reached the tolerance (−1: none)
   long nlgs_run_sweeps_ = 0;    ///< sweeps of NLGS's own run in this solve (its checks' schedule)
-  double floor_k_ = 8;          ///< K of the floor (floor.hpp)
+  std::array<double, 2> floor_k_{5, 8};  ///< the floor's K (floor.hpp): NLGS's and APGD's, Newton's and ADMM's
   double start_err_ = inf;      ///< the start's error (∞: not evaluated, r = 0)
   bool newton_led_ = false;     ///< Newton's own run goes on step by step (newton_first)
   double newton_step_ = 0;      ///< the work of a Newton step measured in this solve (0: none yet)

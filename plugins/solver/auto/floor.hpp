@@ -5,39 +5,52 @@
 // Each floor member (NLGS, APGD, Newton's own run and ADMM when a factorisation fits) keeps
 // its own run, which goes on from slice to slice as it would alone (its iterate, its
 // state), so that after w units of work in auto it has done what it does alone in w. A
-// member whose own run is more than one of its iterations behind (total work)/K gets a
+// member whose own run is more than one of its iterations behind (total work)/K_i gets a
 // slice of it, before any other slice; the slices the heuristic rule picks are cut so that
-// they do not take the total past K·(w + s) of a floor member (w its own-run work, s one of
-// its iterations). So at every choice, total ≤ K·(w_j + s_j) for the member j that alone
-// needs the least work L_j, whose run is then below L_j − s_j: total < K·L_j, and the
-// solve ends, at the latest, in the slice in which j's own run reaches the tolerance.
-// Hence auto's work ≤ K·L_j + one slice (at least the slice's minimum: 5 iterations, or
-// Newton's 4-step probe). K = floor_k: twice the floor members, so that the floor takes at
-// most half of the work and the heuristic rule the rest.
+// they do not take the total past K_i·(w_i + s_i) of a floor member i (w its own-run work,
+// s one of its iterations). So at every choice, total ≤ K_j·(w_j + s_j) for the member j
+// that alone needs the least work L_j, whose run is then below L_j − s_j: total < K_j·L_j,
+// and the solve ends, at the latest, in the slice in which j's own run reaches the
+// tolerance. Hence auto's work ≤ K_j·(L_j + s_j) + one slice (at least the slice's
+// minimum: 5 iterations, or Newton's 4-step probe). K_i = member_k(): the floor takes at
+// most Σ 1/K_i of the work and the heuristic rule the rest.
 #include <array>
 #include <limits>
 
 namespace moreau::auto_floor {
 
-/// K for `members` floor members: 2 per member (NLGS and APGD: 4; with Newton and ADMM: 8).
-inline double floor_k(int members) { return 2.0 * members; }
+/// K of a floor member. Without a factorisation (NLGS and APGD only): 4 each (the floor
+/// takes half the work). With one: 5 for NLGS and APGD, 8 for Newton's own run and ADMM
+/// (the floor takes 2/5 + 2/8 = 65 %). Each Newton or ADMM step is a factorisation, so
+/// their K·(w + s) grows in large steps and the floor pays them late anyway (ski rental);
+/// the cheap members' runs get the larger share, since they are the least members on most
+/// problems and the rule's slices from the best iterate restart APGD's acceleration. On the
+/// whole reduced corpus (docs/solvers.md "Guarantee") this took the worst ratio from 8.09
+/// (1e-4) and 7.86 (1e-8) with K = 8 for all four to 4.93 and 5.12; K = 5 for all four
+/// (the floor takes 80 %) measured 6.95 and 7.54, 5 and 12 5.11 and 5.20, 6 and 8 5.61 and
+/// 6.08, 4 and 8 5.28 and 5.45.
+inline double member_k(bool factorisation, bool factorises) {
+  if (!factorisation) return 4.0;
+  return factorises ? 8.0 : 5.0;
+}
 
 /// One floor member as the floor sees it.
 struct Run {
   bool in = false;    ///< a floor member on this problem, not yet at its iteration cap
   double spent = 0;   ///< work of its own run in this solve
   double step = 0;    ///< the work of its next iteration (its probe when untried)
+  double k = 4;       ///< its K (member_k())
 };
 
 /// The floor member furthest behind total/K by more than one of its iterations (−1: none).
 template <std::size_t N>
-int behind(const std::array<Run, N>& runs, double total, double k) {
+int behind(const std::array<Run, N>& runs, double total) {
   int who = -1;
   double lag = 0;
   for (std::size_t i = 0; i < N; ++i) {
     const Run& r = runs[i];
     if (!r.in) continue;
-    const double l = total / k - (r.spent + r.step);
+    const double l = total / r.k - (r.spent + r.step);
     if (l >= 0 && (who < 0 || l > lag)) who = static_cast<int>(i), lag = l;
   }
   return who;
@@ -46,10 +59,10 @@ int behind(const std::array<Run, N>& runs, double total, double k) {
 /// The most work a slice of member `who` (a floor member or not) may take now without
 /// putting another floor member behind: K·(w + s) − total over the others (∞: no other).
 template <std::size_t N>
-double room(const std::array<Run, N>& runs, double total, double k, int who) {
+double room(const std::array<Run, N>& runs, double total, int who) {
   double least = std::numeric_limits<double>::infinity();
   for (std::size_t i = 0; i < N; ++i)
-    if (runs[i].in && static_cast<int>(i) != who) least = std::min(least, k * (runs[i].spent + runs[i].step) - total);
+    if (runs[i].in && static_cast<int>(i) != who) least = std::min(least, runs[i].k * (runs[i].spent + runs[i].step) - total);
   return least;
 }
 
