@@ -134,3 +134,36 @@ TEST(AutoMemory, WithoutRememberAutoKeepsNoState) {
   EXPECT_EQ(make("auto", {{"remember", true}})->state_fields(2).size(), 6u);
   EXPECT_TRUE(make("nlgs")->state_fields(3).empty());
 }
+
+TEST(AutoMemory, InATimeStepNewtonWaitsForTheWorkOfItsProbe) {
+  // Ski rental in a time step: Newton's probe (4 steps, each a factorisation) is paid only
+  // once the work spent reaches its cost (its step remembered from earlier solves), whatever
+  // the slices' rates say: near the tolerance they are noise (APGD's error is not monotone),
+  // and on wet_pile_3d Newton was probed at once on 650 3D contacts, 1.2e9 units a solve,
+  // on steps that APGD alone finishes. Here APGD is remembered far below its need, so the
+  // slices start at once; before, their rates sent the solve to Newton's probe at once
+  // (1.27e6 units, 3.5 times the solve without a factorisation, direct_max_contacts 0); now
+  // Newton never runs, and the factorisations (ADMM's one step once the work reaches it)
+  // cost at most as much again as the solve without them (ski rental).
+  const int nc = 40;
+  const moreau::LocalProblem p = factored(3, 20, nc, 3u);
+  const double step = 1e3;  // Newton's remembered step, work per contact: a probe of 1.6e5
+  moreau::SolverReport rep[2];
+  double newton_step_after = 0;
+  for (int direct = 0; direct < 2; ++direct) {
+    auto a = make("auto", {{"tolerance", 1e-6}, {"remember", true}, {"direct_max_contacts", direct ? 1000 : 0}});
+    remembered_apgd(*a, 1.0, false);
+    moreau::EntitySet mem = state_set(*a);
+    a->save_state(mem);
+    mem.field("member_iteration").data()[2] = step;
+    a->load_state(mem);
+    Eigen::VectorXd r = Eigen::VectorXd::Zero(p.q.size()), u;
+    rep[direct] = a->solve(p, r, u);
+    ASSERT_TRUE(rep[direct].converged) << direct;
+    a->save_state(mem);
+    newton_step_after = mem.field("member_iteration").data()[2];
+  }
+  EXPECT_EQ(newton_step_after, step) << "Newton did not run";
+  EXPECT_GT(rep[1].work, 4 * step * nc) << "the solve went past the probe's work";
+  EXPECT_LE(rep[1].work, 2 * rep[0].work) << "without a factorisation: " << rep[0].work;
+}
