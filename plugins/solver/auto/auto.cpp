@@ -985,17 +985,36 @@ class Auto : public Solver {
       // it showed no gain), and the probe came at once on 650 3D contacts, 1.2·10⁹ units in
       // one solve, on steps that APGD alone finishes: replayed from the same state (step
       // 1400, 200 steps) `auto` took 2.02 s against `apgd`'s 0.28 s, 0.41 s with the wait.
-      const double step = newton_step_estimate();
+      double step = newton_step_estimate();
+      // In a time step a factorisation measured in this solve (ADMM's first step, Newton's)
+      // raises the estimate: before the run's first Newton solve it comes from W's size, and
+      // a 3D LU fills in far beyond it (wet_pile_3d: ADMM's first step 1.1e7 units, Newton's
+      // 3e7 a step, against an estimate of a few 10⁶).
+      if (bodies_)
+        for (int k : {newton_start_member, newton_member, admm_member}) step = std::max(step, m[k].per_iteration);
+      // In a time step a factorisation also waits while NLGS or APGD, tried and not given
+      // up, has had under a fifth of the work (they get their quarter first, below): near
+      // the tolerance their slices show no rate (APGD's error is not monotone, NLGS's stall
+      // test cuts a slice after 25 sweeps), and Newton's probe came before APGD's second
+      // look (wet_pile_3d, a step of 650 contacts: APGD stopped after 160 steps at
+      // 1.01e-3, Newton then took 1.5·10⁹ units; APGD alone converges there in 662 steps).
+      int starved = -1;  // (the best by rate too: here it would not finish within the work spent)
+      if (bodies_)
+        for (int k : {nlgs_member, apgd_member})
+          if (!excluded(m[k], k) && m[k].slices != 0 && m[k].spent < 0.2 * elapsed && (starved < 0 || m[k].spent < m[starved].spent))
+            starved = k;
       int waiting = -1;
       for (int k : probe_order()) {
         if (k < 0 || excluded(m[k], k) || m[k].slices != 0) continue;
-        const double probe = k == admm_member ? step : k == apgd_member || k == nlgs_member ? 0.0 : 4 * step;
-        if (probe > elapsed && (bodies_ || remaining < 4 * step)) {
+        const bool factors = k != apgd_member && k != nlgs_member;
+        const double probe = k == admm_member ? step : factors ? 4 * step : 0.0;
+        if ((probe > elapsed && (bodies_ || remaining < 4 * step)) || (factors && starved >= 0)) {
           if (waiting < 0) waiting = k;
           continue;
         }
         return exploring_ = k;
       }
+      if (starved >= 0) return exploring_ = starved;
       int least = -1;
       for (int k = 0; k < member_count; ++k)
         if (!excluded(m[k], k) && m[k].slices != 0 && k != best && m[k].spent < 0.2 * elapsed &&
@@ -1057,7 +1076,11 @@ class Auto : public Solver {
     if (memory_[newton_start_member].step > 0) return memory_[newton_start_member].step * nc_;
     const double nnz = bodies_ && P_->W.rows() == 0 ? 12.0 * P_->dim * P_->dim * nc_ : static_cast<double>(P_->W.nonZeros());
     const double n = P_->dim * nc_;
-    return WorkCosts::assembly(nnz, n) + WorkCosts::factorisation(nnz, nnz, n) + 3 * costs_.product;
+    const double estimate = WorkCosts::assembly(nnz, n) + WorkCosts::factorisation(nnz, nnz, n) + 3 * costs_.product;
+    // In a time step, ADMM's step remembered from earlier solves (its first one factorises the
+    // same W) bounds it from below: a 3D LU fills in far beyond W's size (wet_pile_3d: ADMM's
+    // first step 1.1e7 units, Newton's 3e7, the estimate from the size a few 10⁶).
+    return bodies_ ? std::max(estimate, memory_[admm_member].step * nc_) : estimate;
   }
 
   /// After a solve: each member's remembered work per contact follows what this solve showed
