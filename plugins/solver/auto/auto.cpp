@@ -31,7 +31,10 @@
 //    NLGS's iterate can crawl.
 //    Given W, a warm start within 1e-3 of the answer: Newton's own run takes one step first
 //    once NLGS's first stage says it needs more than a step, and goes on while each step
-//    gains 10× (newton_first()).
+//    gains 10× (newton_first(); docs/solvers.md, rule 2b).
+//    In a time step a factorisation always waits for the work spent to reach its
+//    (measured) cost and for NLGS and APGD to have had a fifth of it, and APGD's slices
+//    keep their rate when its error rises (docs/solvers.md, rule 2c).
 // 3. The answer is the best iterate of all; the solve ends at the tolerance, when every
 //    member has used `max_iterations` of its own (Newton at most `newton_max_iterations`),
 //    or (in a time step) had three slices in a row that gained less than 1 %. For a problem
