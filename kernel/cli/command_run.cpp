@@ -2,6 +2,7 @@
 
 #include <csignal>
 
+#include <cstdlib>
 #include <filesystem>
 #include <ostream>
 
@@ -25,12 +26,33 @@ std::string shell_word(const std::string& s) {
   return q + "'";
 }
 
+/// An environment variable's text ("" when unset).
+std::string environment(const char* name) {
+  const char* v = std::getenv(name);
+  return v ? v : "";
+}
+
+/// MOREAU_SHADOW_REPORT: where the shadow solvers' table goes as JSON; checked before the
+/// run, so that a long run does not end unable to write it.
+std::string shadow_report_path(bool shadows) {
+  const std::string path = environment("MOREAU_SHADOW_REPORT");
+  const std::string var = "MOREAU_SHADOW_REPORT (environment variable)";
+  if (path.empty()) return path;
+  if (!shadows) throw InputError("", "names a report file, but MOREAU_SHADOW_SOLVERS names no shadow solvers", var);
+  const std::filesystem::path dir = std::filesystem::absolute(path).parent_path();
+  std::error_code ec;
+  if (!std::filesystem::is_directory(dir, ec)) throw InputError("", "no folder " + dir.string() + " for " + path, var);
+  return path;
+}
+
 }  // namespace
 
 int command_run(const RunArgs& args, std::ostream& out, std::ostream& err) {
   return guarded(err, [&] {
     if (args.out && args.out->empty()) throw InputError("", "--out: expected a file name, got an empty string");
-    auto world = build_world(args.scene, args.out.value_or(""));
+    auto world = build_world(args.scene, args.out.value_or(""), environment("MOREAU_SHADOW_SOLVERS"));
+    const ShadowSolvers* shadows = world->contacts ? world->contacts->shadows.get() : nullptr;
+    const std::string shadow_report = shadow_report_path(shadows != nullptr);
     const std::string path = args.out ? *args.out : world->output.file;
     RunOptions opt;
     std::optional<long> continue_after;
@@ -71,6 +93,11 @@ int command_run(const RunArgs& args, std::ostream& out, std::ostream& err) {
     if (!args.quiet) {
       sum.timer.print(err, sum.last_step - sum.first_step);
       if (sum.stopped_by_hook) err << "stopped by a hook: " << sum.stop_reason << "\n";
+    }
+    if (shadows) {
+      err.flush();  // the table follows the stage times on a terminal
+      shadows->print(out);
+      if (!shadow_report.empty()) shadows->write_json(shadow_report, args.scene, sum.last_step - sum.first_step);
     }
     out << "wrote " << std::filesystem::absolute(path).string() << " (steps " << sum.first_step << " to "
         << sum.last_step << ", t = " << static_cast<double>(sum.last_step) * world->h << " s)\n";

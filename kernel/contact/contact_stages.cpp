@@ -550,7 +550,7 @@ void ContactStages::solve_with_laws(StepContext& c) {
     }
     problem_.error_scale = approaching_contacts_scale(problem_);
     if (exporting) warm_start = r_;
-    report_ = solver->solve(problem_, r_, u_);
+    report_ = shadows ? shadows->solve(*solver, problem_, r_, u_) : solver->solve(problem_, r_, u_);
     if (exporting) solved = r_;  // the answer in the solver's variables
     iterations += report_.iterations;
     law_step_.from_solver(problem_, r_, u_, report_.error);

@@ -23,6 +23,7 @@
 #include "placement.hpp"
 #include "problem_export.hpp"
 #include "contact_assembly.hpp"
+#include "shadow_solvers.hpp"
 #include "solve_log.hpp"
 #include "law_step.hpp"
 #include "swept_detection.hpp"
@@ -64,6 +65,9 @@ class ContactStages {
   bool stop_on_failure = false;
   std::unique_ptr<ProblemExport> exporter;  ///< null unless the scene has `export_problems`
   SolveLog solve_log;  ///< misses and worst error of the run's solves (its tolerance set by the builder)
+  /// Null unless MOREAU_SHADOW_SOLVERS names solvers that solve every problem beside
+  /// `solver` without changing the run (shadow_solvers.hpp).
+  std::unique_ptr<ShadowSolvers> shadows;
 
   /// After the laws are made: their internal variables on the `contacts` set (law_step.hpp).
   void setup_laws(State& state, const std::vector<std::string>& names, const std::vector<std::string>& pointers) {

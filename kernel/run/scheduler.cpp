@@ -268,6 +268,7 @@ RunSummary Scheduler::run(const RunOptions& opt) {
   for (auto& h : w_.hooks) plugin_call(h.label(), "at the end of the run", [&] { h->finish(w_.state); });
   if (opt.sink) opt.sink->close();
   if (w_.contacts) sum.timer.set_solve_assembly(w_.contacts->assembly_seconds());
+  if (w_.contacts && w_.contacts->shadows) sum.timer.set_solve_shadows(w_.contacts->shadows->stage_seconds());
   sum.last_step = step;
   sum.stopped_by_hook = !stop.empty();
   sum.stop_reason = stop;

@@ -19,6 +19,10 @@ void StageTimer::print(std::ostream& os, long steps) const {
       std::snprintf(line, sizeof line, "    %-22s %10.4f s\n", "(of which W assembly)", solve_assembly_);
       os << line;
     }
+    if (i == static_cast<int>(Stage::solve) && solve_shadows_ > 0) {
+      std::snprintf(line, sizeof line, "    %-22s %10.4f s\n", "(shadows, not counted)", solve_shadows_);
+      os << line;
+    }
   }
   if (hooks_ > 0) {
     std::snprintf(line, sizeof line, "  %-24s %10.4f s %6.1f %%\n", "(hooks)", hooks_, t > 0 ? 100.0 * hooks_ / t : 0.0);

@@ -48,7 +48,7 @@ std::optional<std::string> group_of(const PluginUse& c) {
 
 class SceneChecker {
  public:
-  SceneChecker(const JsonFile& file) : file_(file) {}
+  SceneChecker(const JsonFile& file, std::string shadow_solvers = {}) : file_(file), shadow_text_(std::move(shadow_solvers)) {}
 
   /// Everything validated (or InputErrors thrown). Leaves the registry loaded.
   void check() {
@@ -108,6 +108,7 @@ class SceneChecker {
         else stop_on_failure_ = f == "stop";
       }
     }
+    if (!shadow_text_.empty()) check_shadows();
     if (has_interactions() || detection_.contains("broadphase"))
       broadphase_ = plugin_use(Kind::broadphase, detection_.value("broadphase", json("grid")), "/detection/broadphase", "grid");
     if (has_interactions()) check_detectors();
@@ -411,8 +412,56 @@ class SceneChecker {
       }
     cs->stop_on_failure = stop_on_failure_;
     cs->solve_log.tolerance = solver_.params.json().value("tolerance", 0.0);
+    if (!shadows_.empty()) make_shadows(*cs, reg, ctx);
     if (export_) cs->exporter = std::make_unique<ProblemExport>(export_settings(w, ctx));
     w.contacts = std::move(cs);
+  }
+
+  /// MOREAU_SHADOW_SOLVERS (docs/solvers.md, "Comparing solvers on one run"): a JSON array
+  /// of solver blocks (or names), each validated as the scene's `solver` block; one without
+  /// `tolerance` takes the scene solver's. Its faults name the variable, not the scene.
+  void check_shadows() {
+    const std::string var = "MOREAU_SHADOW_SOLVERS (environment variable)";
+    json list;
+    try {
+      list = json::parse(shadow_text_);
+    } catch (const json::parse_error& e) {
+      errors_.emplace_back("", std::string("expected a JSON array of solver blocks, e.g. [{\"type\": \"nlgs\"}]: ") + e.what(), var);
+      return;
+    }
+    if (!list.is_array() || list.empty()) {
+      errors_.emplace_back("", "expected a non-empty JSON array of solver blocks, e.g. [{\"type\": \"nlgs\"}], got " + list.dump(), var);
+      return;
+    }
+    if (!has_interactions()) {
+      errors_.emplace_back("", "the scene has no interactions: no contact problems for shadow solvers to solve", var);
+      return;
+    }
+    const json scene_tolerance = solver_.params.json().value("tolerance", json());
+    const std::size_t before = errors_.size();
+    for (std::size_t i = 0; i < list.size(); ++i) {
+      json spec = list[i].is_string() ? json{{"type", list[i]}} : list[i];
+      if (spec.is_object() && !spec.contains("tolerance") && !scene_tolerance.is_null()) spec["tolerance"] = scene_tolerance;
+      shadows_.push_back(plugin_use(Kind::solver, spec, "/" + std::to_string(i)));
+    }
+    for (std::size_t k = before; k < errors_.size(); ++k) errors_[k] = errors_[k].with_file(var);
+  }
+
+  /// The shadow solvers, each its own instance (its own state over the run, as `auto`'s
+  /// memory), made as the scene's solver is.
+  void make_shadows(ContactStages& cs, Registry& reg, const BuildContext& ctx) const {
+    auto block = [](const PluginUse& u) {
+      json b = u.params.json();
+      b["type"] = u.name;
+      return b.dump();
+    };
+    cs.shadows = std::make_unique<ShadowSolvers>(solver_.name, block(solver_));
+    std::map<std::string, int> seen{{solver_.name, 1}};
+    for (const PluginUse& u : shadows_) {
+      const int n = ++seen[u.name];
+      cs.shadows->add(n == 1 ? u.name : u.name + " #" + std::to_string(n), block(u),
+                      reg.create<Solver>(u.name, u.params, ctx, "MOREAU_SHADOW_SOLVERS" + u.pointer));
+    }
   }
 
   /// `export_problems` (docs/scene.md): exactly one of `steps` and `every`, steps the run
@@ -955,6 +1004,8 @@ class SceneChecker {
   std::vector<BodyUse> bodies_;
   std::vector<Driver> drivers_;
   PluginUse solver_, broadphase_;
+  std::string shadow_text_;          ///< MOREAU_SHADOW_SOLVERS as `moreau run` read it ("" : none)
+  std::vector<PluginUse> shadows_;   ///< its solvers, validated
   /// Per modelization the bodies name: its parameters and its integrator (`models`).
   struct ModelUse {
     Params params;
@@ -977,15 +1028,16 @@ class SceneChecker {
 
 }  // namespace
 
-std::unique_ptr<World> build_world(const std::string& scene_path, const std::string& output_path) {
-  return build_world(read_json_file(scene_path), output_path);
+std::unique_ptr<World> build_world(const std::string& scene_path, const std::string& output_path,
+                                   const std::string& shadow_solvers) {
+  return build_world(read_json_file(scene_path), output_path, shadow_solvers);
 }
 
-std::unique_ptr<World> build_world(const JsonFile& scene, const std::string& output_path) {
+std::unique_ptr<World> build_world(const JsonFile& scene, const std::string& output_path, const std::string& shadow_solvers) {
   JsonFile file = scene;
   const Generated generated = expand_generators(file);  // `generators`: bodies appended first
   return generated.locate([&] {
-    SceneChecker checker(file);
+    SceneChecker checker(file, shadow_solvers);
     try {
       checker.check();
     } catch (...) {
