@@ -10,7 +10,7 @@ missed the tolerance (from the end-of-run summary), and auto over the best membe
 
     python3 scripts/bench_scenes.py [--moreau build/bin/moreau] [--steps 1000 | --full-length] [--repeat 3]
         [--solvers auto nlgs newton admm apgd] [--only NAME ...] [--skip NAME ...] [--tolerance X]
-        [--cpu | --stage-cpu] [--timeout SECONDS] [--out build/bench_scenes]
+        [--cpu | --stage-cpu] [--timeout SECONDS] [--shadow] [--out build/bench_scenes]
 
 --full-length runs every scene over its whole duration (its own number of steps: the issue's
 silo 5000, silo_janssen_2d 4500, masonry_arch_2d 6000, ...) instead of the first --steps.
@@ -23,6 +23,14 @@ move by tens of per cent between runs, CPU times much less (stages other than th
 are included and add the same to every solver, so ratios lean towards 1). With --stage-cpu
 it is the solve stage's CPU time (MOREAU_STAGE_CLOCK=cpu): the solver's own cost, without
 the process start that dominates scenes of few, light steps.
+
+With --shadow each scene runs once per round (one realisation): the first of --solvers is the
+scene's solver, the others solve every one of its problems beside it from the same warm start
+(MOREAU_SHADOW_SOLVERS, docs/solvers.md "Comparing solvers on one run"), and each solver's
+time is its thread CPU time in solve() per step of the run (W's assembly, which the
+stage time counts for a solver that reads W, is not in it). Whole runs of scenes whose
+outcome depends on the answers within the tolerance (a silo that jams or flows) then compare
+the solvers on the same sequence of problems.
 """
 import argparse
 import json
@@ -101,6 +109,33 @@ def run(moreau, scene, name, steps, tmp, tolerance=None, cpu=False, stage_cpu=Fa
             "misses": int(miss.group(1)) if miss else 0, "worst": float(worst.group(1)) if worst else 0.0}
 
 
+def run_shadow(moreau, scene, names, steps, tmp, tolerance=None, timeout=None):
+    """One run with names[0] as the scene's solver and the others as shadows: per solver the
+    same fields as run() gives, from the run's MOREAU_SHADOW_REPORT."""
+    s = json.loads(json.dumps(scene))
+    s["solver"], tol = solver_block(scene, names[0], tolerance)
+    shadows = [solver_block(scene, n, tolerance)[0] for n in names[1:]]
+    path = os.path.join(tmp, "scene.json")
+    json.dump(s, open(path, "w"))
+    report = os.path.join(tmp, "shadow.json")
+    if os.path.exists(report):
+        os.remove(report)
+    n = min(steps, round(s["time"]["duration"] / s["time"]["step"]))
+    env = dict(os.environ, MOREAU_SHADOW_SOLVERS=json.dumps(shadows), MOREAU_SHADOW_REPORT=report)
+    try:
+        p = subprocess.run([moreau, "run", path, "--out", os.path.join(tmp, "out.h5"), "--steps", str(n)], capture_output=True,
+                           text=True, env=env, timeout=timeout)
+    except subprocess.TimeoutExpired:
+        return {sv: {"error": f"timeout after {timeout:g} s"} for sv in names}
+    if p.returncode != 0:
+        msg = p.stderr.strip().splitlines()[-1] if p.stderr.strip() else f"exit {p.returncode}"
+        return {sv: {"error": msg} for sv in names}
+    rows = json.load(open(report))["solvers"]
+    return {sv: {"solve": r["cpu_seconds"] / n, "steps": n, "tol": tol, "misses": r["misses"], "worst": r["worst_error"],
+                 "solves": r["solves"], "iterations_per_solve": r["iterations_per_solve"]}
+            for sv, r in zip(names, rows)}
+
+
 def main():
     ap = argparse.ArgumentParser(description=__doc__.split("\n\n")[0], formatter_class=argparse.RawDescriptionHelpFormatter)
     ap.add_argument("--moreau", default=os.path.join(REPO, "build", "bin", "moreau"))
@@ -115,6 +150,9 @@ def main():
     ap.add_argument("--cpu", action="store_true", help="the run's CPU time per step instead of the solve stage's wall time")
     ap.add_argument("--stage-cpu", action="store_true",
                     help="the solve stage's CPU time per step (MOREAU_STAGE_CLOCK=cpu): no process start, no other stage")
+    ap.add_argument("--shadow", action="store_true",
+                    help="one run per scene: the first solver runs the scene, the others solve its problems as shadows "
+                         "(times: each solver's thread CPU time in solve(); --cpu and --stage-cpu do not apply)")
     ap.add_argument("--out", default=os.path.join(REPO, "build", "bench_scenes"))
     a = ap.parse_args()
     moreau = os.path.abspath(a.moreau)
@@ -126,11 +164,18 @@ def main():
     rows = []
     hdr = f"{'scene':24s} {'tol':>7s} {'steps':>5s} " + " ".join(f"{s + ' ms':>12s}" for s in a.solvers) + \
           f" {'best member':>12s} {'auto/best':>9s}  misses"
+    if a.shadow:
+        print(f"one realisation per scene: {a.solvers[0]}'s run; every solver on its problems (thread CPU ms per step)")
     print(hdr, flush=True)
     with tempfile.TemporaryDirectory() as tmp:
         for name in names:
             results = {s: [] for s in a.solvers}
             for _ in range(a.repeat):  # interleaved: each round runs every solver once
+                if a.shadow:
+                    one = run_shadow(moreau, all_scenes[name], a.solvers, a.steps, tmp, a.tolerance, a.timeout)
+                    for sv in a.solvers:
+                        results[sv].append(one[sv])
+                    continue
                 for sv in a.solvers:
                     results[sv].append(run(moreau, all_scenes[name], sv, a.steps, tmp, a.tolerance, a.cpu, a.stage_cpu, a.timeout))
             med, misses = {}, {}
@@ -153,7 +198,8 @@ def main():
             rows.append({"scene": name, "tolerance": first["tol"], "steps": first["steps"],
                          "ms_per_step": {s: None if t is None else 1e3 * t for s, t in med.items()},
                          "misses": {s: m for s, m in misses.items()}, "best_member": best, "auto_over_best": ratio,
-                         "over_best": ratios, "errors": {s: e for s, e in errors.items() if e}})
+                         "over_best": ratios, "errors": {s: e for s, e in errors.items() if e},
+                         "realisation": a.solvers[0] if a.shadow else "each solver's own"})
             for sv, e in errors.items():
                 if e:
                     print(f"  {sv}: {e}", flush=True)
