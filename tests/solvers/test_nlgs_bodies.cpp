@@ -8,6 +8,7 @@
 #include <moreau/factor_matrix.hpp>
 #include <moreau/solver.hpp>
 #include <random>
+#include <string>
 
 #include "apgd_core.hpp"
 #include "factored_problem.hpp"
@@ -314,6 +315,21 @@ moreau::LocalProblem rigid_frames_problem(unsigned seed, bool compliance) {
   return P;
 }
 
+/// A packed product of APGD (ScaledFactor, RigidFrames) against W assembled from the
+/// factor, on a seeded random x: the product and the diagonal to rounding.
+template <class Packed, class Problem>
+void expect_multiplies_by_w(Packed& packed, const Problem& P, unsigned seed, const std::string& what) {
+  std::mt19937 rng(seed);
+  std::uniform_real_distribution<double> U(-1, 1);
+  const Eigen::VectorXd x = Eigen::VectorXd::NullaryExpr(P.q.size(), [&] { return U(rng); });
+  Eigen::VectorXd out;
+  packed.multiply(x, out);
+  const Eigen::VectorXd want = P.W * x;
+  EXPECT_LT((out - want).norm(), 1e-13 * (1 + want.norm())) << what;
+  EXPECT_LT((packed.diagonal() - Eigen::VectorXd(P.W.diagonal())).norm(), 1e-13 * (1 + want.norm())) << what;
+  EXPECT_GT(want.norm(), 0.1) << what;
+}
+
 TEST(ApgdFactored, RigidFramesMultiplyByW) {
   // APGD's product packed from the frames and lever arms of 3D rigid bodies (15 doubles a
   // contact: rigid_frames.hpp) against W assembled from the factor, with fixed bodies and
@@ -324,15 +340,7 @@ TEST(ApgdFactored, RigidFramesMultiplyByW) {
       const auto P = rigid_frames_problem(seed, compliance);
       moreau::apgd::RigidFrames F;
       ASSERT_TRUE(F.prepare(3, P.factor));
-      std::mt19937 rng(seed);
-      std::uniform_real_distribution<double> U(-1, 1);
-      const Eigen::VectorXd x = Eigen::VectorXd::NullaryExpr(P.q.size(), [&] { return U(rng); });
-      Eigen::VectorXd out;
-      F.multiply(x, out);
-      const Eigen::VectorXd want = P.W * x;
-      EXPECT_LT((out - want).norm(), 1e-13 * (1 + want.norm())) << "seed " << seed;
-      EXPECT_LT((F.diagonal() - Eigen::VectorXd(P.W.diagonal())).norm(), 1e-13 * (1 + want.norm()));
-      EXPECT_GT(want.norm(), 0.1);
+      expect_multiplies_by_w(F, P, seed, "seed " + std::to_string(seed));
     }
   moreau::apgd::RigidFrames F;
   EXPECT_FALSE(F.prepare(3, varied_problem(3, 31, false).factor));
@@ -360,15 +368,7 @@ TEST(ApgdFactored, PackedScaledFactorMultipliesByW) {
         const auto P = varied_problem(d, seed, compliance);
         moreau::apgd::ScaledFactor S;
         ASSERT_TRUE(S.prepare(d, P.factor));
-        std::mt19937 rng(seed);
-        std::uniform_real_distribution<double> U(-1, 1);
-        const Eigen::VectorXd x = Eigen::VectorXd::NullaryExpr(P.q.size(), [&] { return U(rng); });
-        Eigen::VectorXd out;
-        S.multiply(x, out);
-        const Eigen::VectorXd want = P.W * x;
-        EXPECT_LT((out - want).norm(), 1e-13 * (1 + want.norm())) << "dim " << d << ", seed " << seed;
-        EXPECT_LT((S.diagonal() - Eigen::VectorXd(P.W.diagonal())).norm(), 1e-13 * (1 + want.norm()));
-        EXPECT_GT(want.norm(), 0.1);
+        expect_multiplies_by_w(S, P, seed, "dim " + std::to_string(d) + ", seed " + std::to_string(seed));
       }
 }
 

@@ -494,7 +494,7 @@ class Auto : public Solver {
     if (o.x.size() == 0) o.x = start_;
     const double w0 = work_, t0 = trace_ ? thread_seconds() : 0;
     const long it0 = total_;
-    const double before = best_err_, from = std::isfinite(o.err) ? o.err : best_err_;
+    const double from = std::isfinite(o.err) ? o.err : best_err_;
     double reached = inf, window_rate = 0;
     current_ = k;
     in_own_ = true;
@@ -503,24 +503,13 @@ class Auto : public Solver {
       window_rate = run_nlgs(o.x, std::max<long>(1, max_it_ - o.iterations), budget, false, &reached);
       o.sweeps = nlgs_run_sweeps_;
     } else {
-      apgd::Options a;
-      a.tolerance = tol_;
-      a.max_iterations = std::max<long>(1, max_it_ - o.iterations);
-      a.max_work = budget;
-      a.work = &work_;
-      a.state = &own_apgd_state_;
-      a.same_problem = a.resume = o.slices > 0;
-      a.check_every = apgd_check_every_;
-      a.scaling = apgd_scaling();  // with W given: one scalar per contact, as `apgd` alone
-      a.recompute_error = false;
+      // Only with W given (the floor): one scalar per contact, as `apgd` alone.
+      const apgd::Options a = apgd_options(std::max<long>(1, max_it_ - o.iterations), budget, own_apgd_state_,
+                                           o.slices > 0, o.slices > 0);
       Eigen::VectorXd v;
       const SolverReport s = apgd::solve(*P_, a, o.x, v);
       total_ += std::max<long>(s.iterations, 1);
       keep(o.x, s.error);
-      if (bodies_ && best_err_ < before) {
-        best_u_ = v;
-        best_u_ok_ = true;
-      }
       reached = s.error;
     }
     in_own_ = false;
@@ -663,6 +652,23 @@ class Auto : public Solver {
   /// records exceed the caches (there APGD does the work; measured faster on 10⁴ and 10⁵
   /// spheres, docs/solvers.md "Large problems"), one scalar per contact elsewhere: on the
   /// example scenes and the FCLib corpus it was faster on some and slower on others.
+  /// APGD's options for a slice of one of auto's APGD runs (the rule's, or the floor's own
+  /// run): its caps, the solve's work counter, and the error taken from the iteration
+  /// (finish() recomputes the answer's).
+  apgd::Options apgd_options(long max_iterations, double units, apgd::State& state, bool same_problem, bool resume) {
+    apgd::Options a;
+    a.tolerance = tol_;
+    a.max_iterations = max_iterations;
+    a.max_work = units;
+    a.work = &work_;
+    a.state = &state;
+    a.same_problem = same_problem;
+    a.resume = resume;
+    a.check_every = apgd_check_every_;
+    a.scaling = apgd_scaling();
+    a.recompute_error = false;
+    return a;
+  }
   apgd::Scaling apgd_scaling() const { return beyond_caches() ? apgd::Scaling::normal_tangent : apgd::Scaling::contact; }
   /// A time step whose NLGS records exceed 4× the cache (about 2·10⁴ contacts of spheres):
   /// APGD does the work there, and `auto` adds nothing to what `apgd` alone would do on a
@@ -920,15 +926,10 @@ class Auto : public Solver {
         break;
       }
       case apgd_member: {
-        apgd::Options o;
-        limits(o);
-        o.state = &apgd_state_;
-        o.same_problem = apgd_slices_ > 0;  // its packed products are kept over the slices of a solve
-        o.check_every = apgd_check_every_;
-        o.scaling = apgd_scaling();
-        o.recompute_error = false;          // finish() recomputes the answer's error
-        o.resume = apgd_slices_++ > 0 && best_by_ == apgd_member;  // its run goes on while it holds the best iterate
-        s = apgd::solve(*P_, o, x, v);  // through the factor when W was not given
+        // Its packed products are kept over the slices of a solve; its run goes on while it
+        // holds the best iterate.
+        const bool later = apgd_slices_++ > 0;
+        s = apgd::solve(*P_, apgd_options(budget, units, apgd_state_, later, later && best_by_ == apgd_member), x, v);  // through the factor when W was not given
         break;
       }
       default:
