@@ -15,6 +15,22 @@ namespace moreau::apgd {
 namespace {
 inline void project_cone(int d, double mu, const double* x, double* out) { project_on_cone(d, mu, x, out); }
 
+/// x strictly inside the cone ‖x_T‖ ≤ μ x_n (not on its boundary, not at its apex). A
+/// projection lands on the boundary to rounding; the margin keeps such a point outside.
+template <int D>
+inline bool strictly_inside(double mu, const double* x) {
+  const double t = D == 2 ? std::fabs(x[1]) : std::sqrt(x[1] * x[1] + x[2] * x[2]);
+  return t < (1 - 1e-9) * mu * x[0];
+}
+
+/// inside[α] = strictly_inside(μ_α, x_α) for every contact (projected_step's status of x).
+void inside_status(const LocalProblem& P, const Eigen::VectorXd& x, std::vector<unsigned char>& inside) {
+  const int d = P.dim;
+  inside.resize(static_cast<std::size_t>(P.contacts()));
+  for (Eigen::Index a = 0; a < P.contacts(); ++a)
+    inside[static_cast<std::size_t>(a)] = d == 2 ? strictly_inside<2>(P.mu[a], x.data() + 2 * a) : strictly_inside<3>(P.mu[a], x.data() + 3 * a);
+}
+
 void project_all(const LocalProblem& P, const Eigen::VectorXd& x, Eigen::VectorXd& out) {
   const int d = P.dim;
   for (Eigen::Index a = 0; a < P.contacts(); ++a) project_cone(d, P.mu[a], x.data() + a * d, out.data() + a * d);
@@ -91,7 +107,14 @@ class WProduct {
 /// vector operation: at 10⁴ spheres the vector passes cost as much as the products).
 /// The projected step from y along g (g = W y + q + De Saxcé shift, computed here when
 /// `with_g`): x⁺ = P_K(y − D⁻¹ g / L) with P_K the projection in D's metric,
-/// dl = x⁺ − y; returns Σ_α dl_αᵀ D_α dl_α.
+/// dl = x⁺ − y; returns Σ_α dl_αᵀ D_α dl_α; inside_next[α]: x⁺_α strictly inside its cone.
+/// The shift μ‖u_T‖ e_n is added only at the contacts whose last iterate x is not strictly
+/// inside the cone (inside[α] = 0: on its boundary or at its apex). Where the answer is
+/// inside the cone, u = 0 there and the shift vanishes at the answer whatever it is during
+/// the iteration: it changes no fixed point. Added everywhere it is a term of gain up to
+/// μ‖W_T‖/L on the step that no gradient of a convex function has: with μ ≥ 1 it made the
+/// iteration expansive (`czm`'s bonds, μ = 2 in a cone that never binds: bonded_beam_2d's
+/// problems stayed at error 0.1 after 10⁴ steps; docs/solvers.md, `apgd`).
 /// `Split` false: D_α is one scalar per contact, s[a], and P_K the Euclidean projection.
 /// `Split` true: D_α = diag(d_n, d_t, d_t), s[3a..3a+2] = (d_n, d_t, ρ = √(d_t / d_n)).
 /// In the coordinates (r_n, ρ r_t) the D-metric is Euclidean (up to the factor d_n) and the
@@ -99,13 +122,14 @@ class WProduct {
 /// (t_n, ρ t_t) on that cone, divide its tangential part by ρ.
 template <int D, bool Split>
 double projected_step(Eigen::Index nc, const double* mu, const double* s, double invL, const double* y, const double* Wy,
-                      const double* q, bool with_g, double* g, double* xn, double* dl) {
+                      const double* q, bool with_g, double* g, double* xn, double* dl, const unsigned char* inside,
+                      unsigned char* inside_next) {
   double rhs = 0;
   for (Eigen::Index a = 0; a < nc; ++a) {
     const Eigen::Index o = a * D;
     if (with_g) {
       for (int i = 0; i < D; ++i) g[o + i] = Wy[o + i] + q[o + i];
-      g[o] += mu[a] * (D == 2 ? std::fabs(g[o + 1]) : std::sqrt(g[o + 1] * g[o + 1] + g[o + 2] * g[o + 2]));
+      if (!inside[a]) g[o] += mu[a] * (D == 2 ? std::fabs(g[o + 1]) : std::sqrt(g[o + 1] * g[o + 1] + g[o + 2] * g[o + 2]));
     }
     double t[D], p[D];
     if constexpr (Split) {
@@ -114,6 +138,7 @@ double projected_step(Eigen::Index nc, const double* mu, const double* s, double
       t[0] = y[o] - cn * g[o];
       for (int i = 1; i < D; ++i) t[i] = rho * (y[o + i] - ct * g[o + i]);
       project_on_cone(D, mu[a] * rho, t, p);
+      inside_next[a] = strictly_inside<D>(mu[a] * rho, p);
       const double back = 1 / rho;
       for (int i = 1; i < D; ++i) p[i] *= back;
       double en = p[0] - y[o], et = 0;
@@ -130,6 +155,7 @@ double projected_step(Eigen::Index nc, const double* mu, const double* s, double
       const double c = invL / s[a];
       for (int i = 0; i < D; ++i) t[i] = y[o + i] - c * g[o + i];
       project_on_cone(D, mu[a], t, p);
+      inside_next[a] = strictly_inside<D>(mu[a], p);
       double sum = 0;
       for (int i = 0; i < D; ++i) {
         xn[o + i] = p[i];
@@ -145,12 +171,13 @@ double projected_step(Eigen::Index nc, const double* mu, const double* s, double
 
 /// projected_step for the problem's dimension and scaling.
 double projected_step(int d, bool split, Eigen::Index nc, const double* mu, const double* s, double invL, const double* y,
-                      const double* Wy, const double* q, bool with_g, double* g, double* xn, double* dl) {
+                      const double* Wy, const double* q, bool with_g, double* g, double* xn, double* dl, const unsigned char* inside,
+                      unsigned char* inside_next) {
   if (d == 2)
-    return split ? projected_step<2, true>(nc, mu, s, invL, y, Wy, q, with_g, g, xn, dl)
-                 : projected_step<2, false>(nc, mu, s, invL, y, Wy, q, with_g, g, xn, dl);
-  return split ? projected_step<3, true>(nc, mu, s, invL, y, Wy, q, with_g, g, xn, dl)
-               : projected_step<3, false>(nc, mu, s, invL, y, Wy, q, with_g, g, xn, dl);
+    return split ? projected_step<2, true>(nc, mu, s, invL, y, Wy, q, with_g, g, xn, dl, inside, inside_next)
+                 : projected_step<2, false>(nc, mu, s, invL, y, Wy, q, with_g, g, xn, dl, inside, inside_next);
+  return split ? projected_step<3, true>(nc, mu, s, invL, y, Wy, q, with_g, g, xn, dl, inside, inside_next)
+               : projected_step<3, false>(nc, mu, s, invL, y, Wy, q, with_g, g, xn, dl, inside, inside_next);
 }
 
 /// Wxn = Wy + Wd; returns gᵀ(x⁺ − x) (the restart test).
@@ -238,6 +265,7 @@ class Products {
   WorkCosts cost;
   /// solve()'s work vectors beside the state's x, y, W x, W y (kept for their memory).
   Eigen::VectorXd xn, Wxn, g, dl, Wd, best;
+  std::vector<unsigned char> inside, inside_next;  ///< per contact: x, x⁺ strictly inside the cone
 };
 
 bool velocities(const State& state, const LocalProblem& P, const Eigen::VectorXd& x, Eigen::VectorXd& u) {
@@ -308,6 +336,9 @@ SolverReport solve(const LocalProblem& P, const Options& o, Eigen::VectorXd& r, 
   // The start's product; packing the factor (H L per contact side) costs about a product.
   meter.add((resume ? 0 : cost.product) + (W.scaled() && !packed ? cost.product : 0) + 2 * cost.vector);
   const double denominator = error_denominator(P);
+  std::vector<unsigned char>&inside = kept->inside, &inside_next = kept->inside_next;
+  inside_status(P, x, inside);  // from x itself: a resumed run's x is the last call's
+  inside_next.resize(inside.size());
   const double* mu = P.mu.data();
   const double* q = P.q.data();
   for (long it = 1; it <= o.max_iterations && best_err > o.tolerance; ++it) {
@@ -315,7 +346,8 @@ SolverReport solve(const LocalProblem& P, const Options& o, Eigen::VectorXd& r, 
     bool ok = false;
     int backtracks = 0;
     for (int bt = 0; bt < 60; ++bt, ++backtracks) {
-      const double rhs = L * projected_step(d, split, nc, mu, scale, 1 / L, y.data(), Wy.data(), q, bt == 0, g.data(), xn.data(), dl.data());
+      const double rhs = L * projected_step(d, split, nc, mu, scale, 1 / L, y.data(), Wy.data(), q, bt == 0, g.data(), xn.data(), dl.data(), inside.data(),
+                                           inside_next.data());
       W.apply(dl, Wd);
       const double lhs = dl.dot(Wd);
       if (!std::isfinite(lhs)) break;
@@ -341,6 +373,7 @@ SolverReport solve(const LocalProblem& P, const Options& o, Eigen::VectorXd& r, 
                                        : extrapolate<3, false>(nc, mu, beta, xn.data(), x.data(), Wxn.data(), Wx.data(), q, y.data(), Wy.data()));
     x.swap(xn);
     Wx.swap(Wxn);
+    inside.swap(inside_next);
     L *= o.shrink;
     if (!check) {  // x⁺ not measured: not a candidate for the best iterate
       if (best_is_x) {
@@ -355,6 +388,7 @@ SolverReport solve(const LocalProblem& P, const Options& o, Eigen::VectorXd& r, 
     if (!std::isfinite(e)) {
       x.swap(xn);  // x stays the last finite iterate (kept in the state)
       Wx.swap(Wxn);
+      inside.swap(inside_next);
       break;
     }
     if (e < best_err) {
