@@ -1,6 +1,8 @@
 // `apgd` on the shared solver checks (solver_cases.hpp): hand-made problems with known
 // answers, redundant contacts, mass ratios, q = 0, μ ≥ 1, non-convergence said honestly,
 // warm starts; then the shared FCLib problems.
+#include "apgd_core.hpp"
+#include "factored_problem.hpp"
 #include "solver_cases.hpp"
 
 using namespace solver_cases;
@@ -52,6 +54,58 @@ void bonded_beam_czm(const std::string& name) {
 
 TEST(Apgd, CohesiveZoneBondsInsideTheirConesConverge) { bonded_beam_czm("apgd"); }
 TEST(ApgdNormalTangent, CohesiveZoneBondsInsideTheirConesConverge) { bonded_beam_czm("apgd:scaling=normal_tangent"); }
+
+namespace {
+/// N steps in one call against N/2 + N/2 with the state kept and `resume` set (`auto` runs
+/// APGD in slices): the iterate, the extrapolated point, the Lipschitz estimate and the
+/// momentum after both must be the same to the bit, whether the second call reuses the
+/// packed products (`same_problem`) or packs them again. The tolerance is never reached,
+/// so both run exactly N steps. (The answer r each call returns is its own best iterate:
+/// the second call's best is over its own steps, which is why it is not compared here.)
+void expect_resumed_run_is_one_run(const moreau::LocalProblem& P, moreau::apgd::Scaling scaling, const std::string& what) {
+  constexpr long N = 40;
+  moreau::apgd::Options o;
+  o.tolerance = 1e-300;
+  o.scaling = scaling;
+  o.max_iterations = N;
+  moreau::apgd::State one;
+  o.state = &one;
+  Eigen::VectorXd r1 = Eigen::VectorXd::Zero(P.q.size()), u1;
+  EXPECT_EQ(moreau::apgd::solve(P, o, r1, u1).iterations, N) << what;
+  for (bool same_problem : {false, true}) {
+    moreau::apgd::State two;
+    o.state = &two;
+    o.max_iterations = N / 2;
+    o.resume = o.same_problem = false;
+    Eigen::VectorXd r = Eigen::VectorXd::Zero(P.q.size()), u;
+    long iterations = moreau::apgd::solve(P, o, r, u).iterations;
+    o.resume = true;
+    o.same_problem = same_problem;
+    iterations += moreau::apgd::solve(P, o, r, u).iterations;
+    const std::string w = what + (same_problem ? ", products kept" : ", products packed again");
+    EXPECT_EQ(iterations, N) << w;
+    EXPECT_EQ((two.x - one.x).norm(), 0.0) << w;
+    EXPECT_EQ((two.y - one.y).norm(), 0.0) << w;
+    EXPECT_EQ(two.L, one.L) << w;
+    EXPECT_EQ(two.theta, one.theta) << w;
+  }
+}
+}  // namespace
+
+TEST(Apgd, ResumedRunIsTheUninterruptedRun) {
+  for (auto scaling : {moreau::apgd::Scaling::contact, moreau::apgd::Scaling::normal_tangent}) {
+    const std::string sc = scaling == moreau::apgd::Scaling::contact ? "contact" : "normal_tangent";
+    for (int d : {2, 3}) {
+      auto P = factored_problem(d, 10, 2, 16, 51u + static_cast<unsigned>(d));
+      expect_resumed_run_is_one_run(P, scaling, "with W, dim " + std::to_string(d) + ", " + sc);
+      P.W.resize(0, 0);  // through the factor (packed)
+      expect_resumed_run_is_one_run(P, scaling, "through the factor, dim " + std::to_string(d) + ", " + sc);
+    }
+    // The czm beam: bonds inside their cones (no shift) beside contacts on the boundary.
+    const auto beam = moreau::fclib::read(std::string(MOREAU_SOURCE_DIR) + "/tests/data/apgd/bonded_beam_small_2d-step00000020.hdf5");
+    expect_resumed_run_is_one_run(beam.local, scaling, "czm beam, " + sc);
+  }
+}
 
 // The same checks with the step scaled per direction (`scaling: normal_tangent`: the
 // normal and the tangential diagonal entries of W apart, the cone projected in that metric).

@@ -337,7 +337,9 @@ SolverReport solve(const LocalProblem& P, const Options& o, Eigen::VectorXd& r, 
   meter.add((resume ? 0 : cost.product) + (W.scaled() && !packed ? cost.product : 0) + 2 * cost.vector);
   const double denominator = error_denominator(P);
   std::vector<unsigned char>&inside = kept->inside, &inside_next = kept->inside_next;
-  inside_status(P, x, inside);  // from x itself: a resumed run's x is the last call's
+  // A resumed run keeps the status its last step gave x (the products, which hold it, are
+  // the state's); otherwise it is taken from x.
+  if (!resume || inside.size() != static_cast<std::size_t>(nc)) inside_status(P, x, inside);
   inside_next.resize(inside.size());
   const double* mu = P.mu.data();
   const double* q = P.q.data();
