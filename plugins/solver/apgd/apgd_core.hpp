@@ -1,7 +1,9 @@
 #pragma once
 // Accelerated projected gradient (Nesterov; APGD of Mazhar et al. 2015) on the De
 // Saxcé-shifted problem  min ½ rᵀWr + (q + s)ᵀr  over r ∈ K, the shift s = μ‖u_T‖ e_n
-// recomputed at every step from the extrapolated point y:
+// recomputed at every step from the extrapolated point y, at the contacts whose iterate x
+// is on the cone's boundary or apex (inside it, u = 0 at the answer: no shift needed, and
+// with μ ≥ 1 it made the step expansive; apgd_core.cpp, projected_step):
 //   g = W y + q + s(y),   x⁺ = P_K(y − (1/L) D⁻¹ g)
 // with D diagonal per contact (Options::scaling: a scalar, its mean diagonal of W, or its
 // normal entry and its mean tangential one; P_K is the exact projection in D's metric) and L found
