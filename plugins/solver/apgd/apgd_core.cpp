@@ -17,10 +17,11 @@ inline void project_cone(int d, double mu, const double* x, double* out) { proje
 
 /// x strictly inside the cone ‖x_T‖ ≤ μ x_n (not on its boundary, not at its apex). A
 /// projection lands on the boundary to rounding; the margin keeps such a point outside.
+/// Squared, without a square root (a root per contact cost 5 % of a step at 256 contacts).
 template <int D>
 inline bool strictly_inside(double mu, const double* x) {
-  const double t = D == 2 ? std::fabs(x[1]) : std::sqrt(x[1] * x[1] + x[2] * x[2]);
-  return t < (1 - 1e-9) * mu * x[0];
+  const double tt = D == 2 ? x[1] * x[1] : x[1] * x[1] + x[2] * x[2], n = (1 - 1e-9) * mu * x[0];
+  return x[0] > 0 && tt < n * n;
 }
 
 /// inside[α] = strictly_inside(μ_α, x_α) for every contact (projected_step's status of x).
