@@ -252,8 +252,7 @@ class Products {
         s[a] = positive(t / d);
       }
     }
-    cost = WorkCosts::of(P, W.through_factor());
-    if (W.scaled()) cost.product = WorkCosts::scaled_factor_product(P);
+    cost = W.scaled() ? WorkCosts::packed(P) : WorkCosts::of(P, W.through_factor());
   }
   bool of(const LocalProblem& P) const { return problem == &P && s.size() == (split() ? 3 : 1) * P.contacts(); }
   bool of(const LocalProblem& P, Scaling sc) const { return scaling == sc && of(P); }
