@@ -167,3 +167,26 @@ TEST(AutoMemory, InATimeStepNewtonWaitsForTheWorkOfItsProbe) {
   EXPECT_GT(rep[1].work, 4 * step * nc) << "the solve went past the probe's work";
   EXPECT_LE(rep[1].work, 2 * rep[0].work) << "without a factorisation: " << rep[0].work;
 }
+
+TEST(AutoMemory, AMemberThatDidNotConvergeIsRememberedAtMostAtItsWorkToItsCap) {
+  // A tolerance no member reaches within `max_iterations` = 4: every member stops at its
+  // cap, and its extrapolated need (its work to converge at its last rate) is far above
+  // what it can spend. Its memory is at most its work to that cap (here: what it spent, at
+  // most the solve's work); before, a slice that gained next to nothing was remembered at
+  // its extrapolation (ADMM on a 650-contact step of wet_pile_3d: 7·10²⁰ units a contact).
+  const int nc = 12;
+  const moreau::LocalProblem p = factored(3, 6, nc, 7u);
+  auto a = make("auto", {{"tolerance", 1e-15}, {"remember", true}, {"max_iterations", 4}});
+  Eigen::VectorXd r = Eigen::VectorXd::Zero(p.q.size()), u;
+  const moreau::SolverReport rep = a->solve(p, r, u);
+  ASSERT_FALSE(rep.converged);
+  moreau::EntitySet after = state_set(*a);
+  a->save_state(after);
+  const double* cost = after.field("member_cost").data();
+  int learnt = 0;
+  for (int k = 0; k < 5; ++k) {
+    EXPECT_LE(cost[k], rep.work / nc * (1 + 1e-12)) << "member " << k;
+    learnt += cost[k] > 0;
+  }
+  EXPECT_GE(learnt, 2) << "members tried and learnt";
+}
