@@ -121,6 +121,16 @@ struct WorkCosts {
   }
   static constexpr double packed_discount = 0.65;
 
+  /// A Newton step's cost per call in a time step (W assembled from the factor, counted by
+  /// `auto`): the sparse LU's symbolic analysis and allocations and the Jacobian's sparse
+  /// products cost more than their sizes say on small problems. Measured as shadows of an
+  /// `apgd` run (300 steps, CPU ns per counted unit): a Newton step took 0.64–0.75 on
+  /// box_tower_3d (40 contacts) and 0.86–0.93 on clusters_3d (35), against APGD's (packed)
+  /// 0.42–0.45 and 0.62–0.68, i.e. about 1.2·10⁵ and 0.9·10⁵ units short a step; on
+  /// wet_pile_3d's 650 contacts (3·10⁷ units a step) it was not short. Problems given with W
+  /// (FCLib) count as before.
+  static constexpr double newton_step_call = 1e5;
+
   /// A sparse LU (or LDLᵀ) factorisation with these factors of an n × n matrix (Eigen's
   /// supernodal LU: a cost per column besides the fill and the flops).
   static double factorisation(double nnz_l, double nnz_u, double n) {

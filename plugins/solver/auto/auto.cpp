@@ -919,6 +919,7 @@ class Auto : public Solver {
         o.last = &last_;
         if (who == newton_start_member) o.merits = &newton_merits_;  // its own run goes on as one run
         s = newton_.solve(with_w(), o, x, v);
+        if (bodies_) work_ += WorkCosts::newton_step_call * static_cast<double>(s.iterations);  // work.hpp
         break;
       }
       case admm_member: {
@@ -1097,7 +1098,8 @@ class Auto : public Solver {
     if (memory_[newton_start_member].step > 0) return memory_[newton_start_member].step * nc_;
     const double nnz = bodies_ && P_->W.rows() == 0 ? 12.0 * P_->dim * P_->dim * nc_ : static_cast<double>(P_->W.nonZeros());
     const double n = P_->dim * nc_;
-    const double estimate = WorkCosts::assembly(nnz, n) + WorkCosts::factorisation(nnz, nnz, n) + 3 * costs_.product;
+    const double estimate = WorkCosts::assembly(nnz, n) + WorkCosts::factorisation(nnz, nnz, n) + 3 * costs_.product +
+                            (bodies_ ? WorkCosts::newton_step_call : 0.0);
     // In a time step, ADMM's step remembered from earlier solves (its first one factorises the
     // same W) bounds it from below: a 3D LU fills in far beyond W's size (wet_pile_3d: ADMM's
     // first step 1.1e7 units, Newton's 3e7, the estimate from the size a few 10⁶).
