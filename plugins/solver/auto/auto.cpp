@@ -11,8 +11,9 @@
 // (4, doubling after each loss, at most 256) another member is tried first with the
 // incumbent's work as its budget: if it converges within that, it takes over. A member
 // that goes on with its own run past its budget is learnt at what it took (a memory rises
-// at most twofold a solve: remembered()); after a step at rest NLGS's first sweep goes
-// first (rest_probe()).
+// at most twofold a solve: remembered()); after a step at rest the warm start's error is
+// checked first, by APGD's start, and a warm start within the tolerance is the answer
+// (rest_probe()); a challenger that wins at its first check is learnt (learn()).
 // 1. NLGS runs on exactly the `nlgs` schedule (error at sweep 1, then every `check_every`
 //    sweeps; through body velocities in the time-stepper), so a step that NLGS finishes
 //    costs what `nlgs` costs. It keeps going while its measured rate says it finishes
@@ -203,11 +204,10 @@ class Auto : public Solver {
       }
       if (bodies_ && !(start_err <= tol_)) records(P, r, true);
     } else if (bodies_) {
-      // In a time step NLGS takes its first sweep as `nlgs` does: a warm start accepted at
-      // every step of a resting stack lets its residual (up to the tolerance) add up into
-      // a slow creep of the bodies. A solve that starts with another remembered member
-      // packs NLGS's records only if NLGS runs (run_nlgs()).
-      records(P, r, !starts_with_another_member(nc <= direct_max_contacts_));  // once per solve
+      // A solve that starts with another remembered member, or after a step at rest with the
+      // warm start's check (rest_probe(), through APGD's product), packs NLGS's records only
+      // if NLGS runs (run_nlgs()).
+      records(P, r, !at_rest_ && !starts_with_another_member(nc <= direct_max_contacts_));  // once per solve
     } else {
       velocities(r, u);
       start_err = natural_map_error(P, r, u);
@@ -222,7 +222,6 @@ class Auto : public Solver {
       return rep;
     }
     if (!bodies_) sweeper_.prepare(P);
-    nlgs::fixed_last_order(P, order_);
     costs_ = WorkCosts::of(P, bodies_);
     bool nlgs_first = true;  // run the first NLGS stage (false: records far beyond the caches)
     if (bodies_) {
@@ -242,6 +241,7 @@ class Auto : public Solver {
     best_by_ = -1;
     best_own_ = false;
     winner_ = -1;
+    challenger_ = -1;
     total_ = 0;
     work_ = std::isfinite(start_err) ? costs_.product + costs_.error : 0;  // the start's check
     admm_slices_ = 0;
@@ -286,10 +286,15 @@ class Auto : public Solver {
     };
 
     // 0. The incumbent, and now and then another member first on the incumbent's budget.
+    // After a step at rest the warm start's check first (a step still at rest ends there;
+    // a challenge waits for a step that moves: at rest every member's cost is its check).
+    if (rest_probe(u)) return finish();
+    nlgs::fixed_last_order(P, order_);  // NLGS's order (only if the step goes on)
     const int inc = remember_ ? incumbent(m) : -1;
     bool challenged = false;  // a challenger ran first and lost
     if (inc >= 0) {
       const int c = challenger(m, inc);
+      challenger_ = c;
       if (c >= 0) {
         slice(m, c, memory_[inc].cost * nc_, false);
         Memory& mc = memory_[c];
@@ -306,9 +311,6 @@ class Auto : public Solver {
       }
     }
 
-    // After a step at rest, NLGS's first sweep from the warm start before the incumbent.
-    if (!challenged && rest_probe(m, inc)) return finish();
-
     // 1. The first member: NLGS on the `nlgs` schedule, or the incumbent on thrice its work.
     const int first = inc >= 0 ? inc : nlgs_member;
     if (first == nlgs_member && nlgs_sweeps_ > 0 && nlgs_first) {
@@ -322,7 +324,7 @@ class Auto : public Solver {
       // APGD's on bonded contacts), with Δv set anew (the challenger may have moved it).
       Eigen::VectorXd x = challenged ? start_ : best_;
       if ((x - start_).squaredNorm() != 0) ms.clean = false;
-      if (bodies_ && (challenged || !ms.clean)) body_sweeper_.reset_velocities(x);
+      if (bodies_ && records_packed_ && (challenged || !ms.clean)) body_sweeper_.reset_velocities(x);  // (else run_nlgs packs them from x)
       current_ = nlgs_member;
       const double rate = run_nlgs(x, std::min(nlgs_sweeps_, max_it_), 0, true, &reached);
       ms.iterations += total_ - before_it;
@@ -343,10 +345,7 @@ class Auto : public Solver {
       ms.need = rate > 0 ? (work_ - before) + std::log(best_err_ / tol_) / rate : 0;
     } else if (first != nlgs_member) {
       slice(m, first, 3 * memory_[first].cost * nc_, false);
-      if (best_err_ <= tol_) {
-        if (bodies_ && m[first].iterations <= 1 && !beyond_caches()) sweep_accepted_warm_start();
-        return finish();
-      }
+      if (best_err_ <= tol_) return finish();
     } else if (!std::isfinite(best_err_)) {  // nlgs_sweeps = 0: the start's error, unless rule 0 had it
       start_error(r, u);
     }
@@ -543,59 +542,22 @@ class Auto : public Solver {
     return !s.available || s.iterations >= member_max(k) || (s.slices >= fruitless && s.fruitless >= fruitless);
   }
 
-  /// The incumbent accepted the warm start as it is, or after one iteration: a step at rest.
-  /// In a time step an answer anywhere within the tolerance at every such step lets resting
-  /// bodies creep (the start: `nlgs` and the first stage always sweep once; with APGD
-  /// first, OutputLayout.RestartsFromAVersion1File saw 1.5e-6 rad), so NLGS takes its first
-  /// sweep from the warm start, as the first stage would, and its iterate is the answer
-  /// when it meets the tolerance (else the incumbent's stays).
-  void sweep_accepted_warm_start() {
-    const double accepted = best_err_;
-    const Eigen::VectorXd kept = best_;
-    const bool kept_u_ok = best_u_ok_;
-    const Eigen::VectorXd kept_u = kept_u_ok ? best_u_ : Eigen::VectorXd();
-    Eigen::VectorXd x = start_;  // run_nlgs packs the records from it, or sets Δv from it
-    current_ = nlgs_member;
-    nlgs_run_sweeps_ = 0;  // a run of its own
-    best_err_ = inf;
-    double reached = inf;
-    run_nlgs(x, std::min(check_, max_it_), 0, false, &reached);
-    if (!(best_err_ <= tol_)) {
-      best_ = kept;
-      best_err_ = accepted;
-      best_u_ok_ = kept_u_ok;
-      if (kept_u_ok) best_u_ = kept_u;
-    }
-  }
-
-  /// After a step at rest (at_rest_), when the incumbent is not NLGS: NLGS's first sweep
-  /// from the warm start, as `nlgs` would take it. A step that is still at rest ends there, at
-  /// the cost of `nlgs` (the incumbent first would pay its own check, then that sweep:
-  /// sweep_accepted_warm_start(); on the settled issue-15 silo, APGD's check and NLGS's sweep
-  /// were 1.4× NLGS's sweep alone). Otherwise the incumbent starts from the warm start, as it
-  /// would have: the sweep is the price of the test. True when the sweep met the tolerance.
-  bool rest_probe(std::array<MemberState, member_count>& m, int inc) {
-    if (!(at_rest_ && bodies_ && inc > nlgs_member && records_fit_ && nlgs_sweeps_ > 0)) return false;
-    MemberState& ms = m[nlgs_member];
-    Eigen::VectorXd x = start_;
-    const double before = work_;
-    const long before_it = total_;
-    double reached = inf;
-    current_ = nlgs_member;
-    run_nlgs(x, 1, 0, false, &reached);
-    ms.iterations += total_ - before_it;
-    ms.per_iteration = work_ - before;
-    account(ms, work_ - before, 0);
-    if (trace_) std::fprintf(stderr, "auto: rest probe (one nlgs sweep) %.3g work, reached %.2e\n", work_ - before, reached);
-    if (best_err_ <= tol_) {
-      winner_ = nlgs_member;
-      return true;
-    }
-    best_ = start_;  // the incumbent from the warm start (its measure of cost stays fair)
-    best_err_ = inf;
-    best_u_ok_ = false;
-    best_by_ = -1;
-    return false;
+  /// After a step at rest (at_rest_, within the caches): the warm start's error first, by
+  /// APGD's start (its packed product, kept for an APGD slice if one follows; NLGS's records
+  /// are not packed for it). A warm start within the tolerance is the answer, as `apgd`
+  /// alone takes it (and as rule 0 takes it for a problem given with W). Until branch
+  /// i15-light NLGS's first sweep from the warm start came first at such a step (a warm
+  /// start accepted at every step lets resting bodies creep within the tolerance): it cost
+  /// 1.3–2.3× `apgd` in `solve()` on the light scenes (mortar_wall_2d, the arrays,
+  /// block_on_incline_3d), for a creep that the tolerance bounds (docs/solvers.md, "A step
+  /// at rest"). Above the tolerance the step is not at rest: the members go on from the
+  /// warm start, its error known. True when the step ends here; `u`: its W x + q then.
+  bool rest_probe(Eigen::VectorXd& u) {
+    if (!(at_rest_ && bodies_ && records_fit_)) return false;
+    const double w0 = work_;
+    start_error(start_, u);
+    if (trace_) std::fprintf(stderr, "auto: rest check %.3g work, warm start at %.2e\n", work_ - w0, best_err_);
+    return best_err_ <= tol_;
   }
 
   /// Whether a slice of `who` from the best iterate goes on with its own run from the warm
@@ -676,10 +638,10 @@ class Auto : public Solver {
   /// (challenger(): its rate shows only after ~10 memory-bound sweeps, and its first budget
   /// is the cold step's remembered work: at 10⁵ spheres its challenge at step 2 took 0.92 s
   /// for 65 sweeps that missed, against 0.3–0.4 s for APGD's whole warm solve); and a warm
-  /// start that APGD accepts is the answer, as with `apgd` alone, without the NLGS sweeps
-  /// of sweep_accepted_warm_start() (their records packed, 9 MB at 10⁴ spheres, and up to
-  /// `check_every` sweeps: 10⁴ spheres, 50 steps, warm step 22.9 → 18.7 ms). NLGS stays a
-  /// member of the slices.
+  /// start that APGD accepts is the answer, as with `apgd` alone (before branch i15-light
+  /// elsewhere NLGS swept such a warm start; here its records were packed, 9 MB at 10⁴
+  /// spheres, and up to `check_every` sweeps: 10⁴ spheres, 50 steps, warm step 22.9 → 18.7
+  /// ms without them). NLGS stays a member of the slices.
   bool beyond_caches() const { return bodies_ && !records_fit_; }
   /// The start's error before the slices (nlgs_sweeps = 0, or records beyond the caches).
   /// Without NLGS's records APGD measures it (it packs its product for its first slice
@@ -697,7 +659,7 @@ class Auto : public Solver {
       current_ = apgd_member;
       const SolverReport s = apgd::solve(*P_, o, x, u);
       ++apgd_slices_;
-      keep(x, s.error);
+      keep(x, s.error, &u);  // its u = W x + q: the answer's when x is (finish())
       return;
     }
     velocities(r, u);
@@ -1113,7 +1075,11 @@ class Auto : public Solver {
     at_rest_ = best_err_ <= tol_ && total_ <= 2;  // the warm start (after at most one sweep) was the answer
     // A solve that its first member finished at its first check (a warm start that was
     // already the answer, or no contact closing) says nothing of the members' costs.
-    if (winner_ >= 0 && m[winner_].iterations <= 1 && m[winner_].slices <= 1) return;
+    // But a challenger that wins at its first check is learnt at what it took: it was tried
+    // on the incumbent's budget and did the step for less (block_on_incline_3d: APGD won
+    // every 4th step at its check, 895 units against NLGS's sweep, 1972, and NLGS stayed
+    // remembered at its cold first step's 4010 a contact, so it was tried again and again).
+    if (winner_ >= 0 && winner_ != challenger_ && m[winner_].iterations <= 1 && m[winner_].slices <= 1) return;
     for (int k = 0; k < member_count; ++k) {
       const MemberState& s = m[k];
       if (s.slices == 0) continue;
@@ -1159,6 +1125,7 @@ class Auto : public Solver {
   }
 
   int winner_ = -1;             ///< the member whose run reached the tolerance (−1: none)
+  int challenger_ = -1;         ///< the member tried first on the incumbent's budget in this solve (−1: none)
   long nlgs_run_sweeps_ = 0;    ///< sweeps of NLGS's own run in this solve (its checks' schedule)
   std::array<double, 2> floor_k_{5, 8};  ///< the floor's K (floor.hpp): NLGS's and APGD's, Newton's and ADMM's
   double start_err_ = inf;      ///< the start's error (∞: not evaluated, r = 0)
