@@ -67,6 +67,27 @@ def solve(moreau, path, warm, solver, tol):
     return {"converged": bool(line["converged"]), "work": float(line["work"]), "error": line["error"]}
 
 
+def members_from(path, cases, tolerances):
+    """The members' figures of an earlier --csv: {(case, tolerance, member): figures}."""
+    import csv
+    names = {os.path.basename(c[0])[:-5] + ("+warm" if c[1] else ""): c for c in cases}
+    known = {}
+    try:
+        with open(path) as f:
+            for row in csv.DictReader(f):
+                c = names.get(row["problem"])
+                tol = float(row["tolerance"])
+                if c is None or not any(abs(tol - t) <= 1e-12 * t for t in tolerances):
+                    continue
+                tol = next(t for t in tolerances if abs(tol - t) <= 1e-12 * t)
+                for m in MEMBERS:  # (the least member's work at full precision, from its own column)
+                    work = float(row["least_work"] if row["least"] == m else row[m + "_work"])
+                    known[(c, tol, m)] = {"converged": row[m + "_converged"] == "true", "work": work, "error": float("nan")}
+    except (OSError, KeyError, ValueError) as e:
+        fail(f"cannot read the members' figures from {path}: {e}")
+    return known
+
+
 def main():
     ap = argparse.ArgumentParser(description=__doc__.split("\n\n")[0])
     ap.add_argument("--moreau", default=os.path.join(REPO, "build", "bin", "moreau"))
@@ -79,6 +100,10 @@ def main():
                     "tests/solvers/test_auto_guarantee.cpp; docs/solvers.md \"Guarantee\")")
     ap.add_argument("--jobs", type=int, default=2)
     ap.add_argument("--csv", help="write every pair's figures there")
+    ap.add_argument("--members-from", metavar="CSV",
+                    help="take the members' figures from an earlier --csv of the same corpus and members' code "
+                         "(only auto runs: about a fifth of the time, to compare versions of auto)")
+    ap.add_argument("--worst", type=int, default=0, metavar="N", help="list the N worst pairs of each tolerance")
     a = ap.parse_args()
     if a.k is None:
         a.k = stated_k()
@@ -99,10 +124,12 @@ def main():
     if not cases:
         fail(f"no problems in {problems_dir}")
 
-    jobs = [(c, tol, s) for c in cases for tol in a.tolerances for s in MEMBERS + ["auto"]]
+    known = members_from(a.members_from, cases, a.tolerances) if a.members_from else {}
+    jobs = [(c, tol, s) for c in cases for tol in a.tolerances for s in MEMBERS + ["auto"] if (c, tol, s) not in known]
     with concurrent.futures.ThreadPoolExecutor(a.jobs) as pool:
         results = list(pool.map(lambda j: solve(a.moreau, j[0][0], j[0][1], j[2], j[1]), jobs))
-    by = {(j[0], j[1], j[2]): r for j, r in zip(jobs, results)}
+    by = dict(known)
+    by.update({(j[0], j[1], j[2]): r for j, r in zip(jobs, results)})
 
     broken, rows = [], []
     for tol in a.tolerances:
@@ -114,7 +141,7 @@ def main():
             by_auto += au["converged"]
             row = {"problem": name, "tolerance": tol, "auto_work": au["work"], "auto_converged": au["converged"],
                    "least": reached[0][1] if reached else "", "least_work": reached[0][0] if reached else "",
-                   "ratio": "", "members": ",".join(f"{by[(c, tol, m)]['work']:.6g},{str(by[(c, tol, m)]['converged']).lower()}"
+                   "ratio": "", "members": ",".join(f"{by[(c, tol, m)]['work']!r},{str(by[(c, tol, m)]['converged']).lower()}"
                                                     for m in MEMBERS)}
             if reached:
                 some += 1
@@ -134,6 +161,7 @@ def main():
         ratios.sort()
         worst = max(ratios) if ratios else 0
         worst_of = next((r["problem"] for r in rows if r["tolerance"] == tol and r.get("raw") == worst), "")
+        listed = sorted((r for r in rows if r["tolerance"] == tol and "raw" in r), key=lambda r: -r["raw"])[:a.worst]
         within = lambda k, rs=ratios: sum(x <= k for x in rs)
         print(f"tolerance {tol:g}: {len(cases)} problems, {some} reached by some member, {by_auto} by auto; "
               f"counted work auto / least member: median {statistics.median(ratios) if ratios else 0:.2f}, "
@@ -141,6 +169,9 @@ def main():
               f"{a.k:g}x {within(a.k)} of {len(ratios)}; where one member dominates (under half the next): "
               f"{len(dominant)} pairs, worst {max(dominant) if dominant else 0:.2f}, within 1x {within(1, dominant)}, "
               f"1.5x {within(1.5, dominant)}")
+        for r in listed:
+            print(f"  {r['raw']:6.2f}  {r['problem']:<55} least {r['least']:<6} {float(r['least_work']):10.4g}  "
+                  f"auto {r['auto_work']:10.4g}{'' if r['auto_converged'] else ' (missed)'}")
     if a.csv:
         with open(a.csv + ".tmp", "w") as f:
             f.write("problem,tolerance,least,least_work,auto_work,auto_converged,ratio,"
