@@ -20,7 +20,7 @@ namespace {
 /// work is at most K·(L + s) + one slice, L the least work of a member alone, s one of its
 /// iterations, K that member's: with a factorisation 5 for NLGS and APGD, 8 for Newton and
 /// ADMM; without, 4. Measured: on the whole reduced corpus (scripts/guarantee_study.py, 258
-/// pairs) the worst is 4.24 at 1e-4 (the wet pile, step 100) and 4.88 at 1e-8 (dense disks,
+/// pairs) the worst is 3.77 at 1e-4 (fclib-local_problem_test) and 4.89 at 1e-8 (dense disks,
 /// μ 0.3, step 600, warm); on this test's 46 pairs 4.83 (spheres, μ 0.3, step 300, 1e-8:
 /// Newton alone in 6.1·10⁶; the files in tests/data/corpus are older exports than the
 /// corpus's). The 1.5 % above 4.83 allow for another compiler's rounding moving an

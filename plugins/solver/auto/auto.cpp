@@ -937,8 +937,11 @@ class Auto : public Solver {
     // monotone, so near the tolerance a slice often ends above its start, and with a rate
     // of 0 APGD got no further slice while Newton and ADMM took the solve (silo_janssen_2d
     // replayed from step 3000 of a run, 250 steps: 2.17 -> 1.01 s, `apgd` alone 0.66;
-    // wet_pile_3d from step 1400 of `nlgs`'s run: 0.38 -> 0.20 s, `nlgs` 0.17).
-    if (bodies_ && who == apgd_member && reached > from && before > 0) ms.rate = before;
+    // wet_pile_3d from step 1400 of `nlgs`'s run: 0.38 -> 0.20 s, `nlgs` 0.17). Given W
+    // (the floor's APGD run) too: the mortar wall, step 100, 1e-4, APGD's run at 8.5e-4 →
+    // 9.7e-4 in one slice, then ADMM got 2× APGD's whole work before APGD's next slice took
+    // it to 9.1e-5 (docs/solvers.md "Guarantee": worst at 1e-4 4.24 → 3.77).
+    if (who == apgd_member && reached > from && before > 0) ms.rate = before;
     ms.fruitless = gain < std::log(1 / 0.99) ? ms.fruitless + 1 : 0;
     if (best_err_ > tol_)
       ms.need = ms.rate > 0 ? ms.spent + std::log(std::min(from, reached) / tol_) / ms.rate : 0;
