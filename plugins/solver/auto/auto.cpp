@@ -387,12 +387,19 @@ class Auto : public Solver {
     }
     return f;
   }
-  /// The work at which NLGS's first stage ends: the least K·s over the other floor members
-  /// (s their first iteration, K theirs), as every choice of the slices (floor.hpp).
+  /// The work at which NLGS's first stage ends (it ends sooner when its rate says it would
+  /// not finish within twice the work spent): 8 times the least K·s over the other floor
+  /// members (s their first iteration, K theirs). At 1× (every choice of the slices,
+  /// floor.hpp) the stage ended after about 5 sweeps, and on problems NLGS alone finishes in
+  /// a few tens of sweeps the floor then paid APGD's and Newton's first slices: at 8× the
+  /// pairs within 1× of the least member on the reduced corpus went 78 → 81 (1e-4) and
+  /// 59 → 65 (1e-8), where one member dominates 15 → 20 of 57 at 1e-8, the worst unchanged
+  /// (3.77 / 4.89; 2×, 3×: no change, 4×, 6×: the bonded beam at 1e-4 1.31 → 4.6; 16×: 84
+  /// and 66). The bound's first slice is then at most 8·K_j·s_j (docs/solvers.md, 2a).
   double first_stage_cap(bool direct) const {
     double s = floor_k_[0] * iteration_work(apgd_member, 0);
     if (direct) s = std::min(s, floor_k_[1] * iteration_work(admm_member, 0));  // (Newton's probe is 4 of them)
-    return s;
+    return 8 * s;
   }
   /// The work of one iteration of member k: `measured` on this problem when known, else its
   /// estimate (an NLGS sweep; an APGD step, a product and an error; a Newton or ADMM step,
