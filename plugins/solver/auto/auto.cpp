@@ -392,7 +392,7 @@ class Auto : public Solver {
   /// members (s their first iteration, K theirs). At 1× (every choice of the slices,
   /// floor.hpp) the stage ended after about 5 sweeps, and on problems NLGS alone finishes in
   /// a few tens of sweeps the floor then paid APGD's and Newton's first slices: at 8× the
-  /// pairs within 1× of the least member on the reduced corpus went 78 → 81 (1e-4) and
+  /// pairs within 1× of the least member on the reduced corpus (main 18cca7e) went 78 → 81 (1e-4) and
   /// 59 → 65 (1e-8), where one member dominates 15 → 20 of 57 at 1e-8, the worst unchanged
   /// (3.77 / 4.89; 2×, 3×: no change, 4×, 6×: the bonded beam at 1e-4 1.31 → 4.6; 16×: 84
   /// and 66). The bound's first slice is then at most 8·K_j·s_j (docs/solvers.md, 2a).
@@ -436,7 +436,8 @@ class Auto : public Solver {
     // slices of APGD's run are booked as APGD's slices (the rule then ranks APGD by its
     // run's rate; NLGS's are not: booked too, the rule took NLGS's window rate near 1e-8
     // over Newton's and ADMM's, tests/data/corpus dense disks μ 1 warm 3.79 → 6.21).
-    // Measured, docs/solvers.md "Guarantee": worst 4.93 → 4.24 (1e-4), 5.12 → 4.88 (1e-8).
+    // Measured on main 18cca7e (docs/solvers.md "Guarantee"): worst 4.93 → 4.24 (1e-4),
+    // 5.12 → 4.88 (1e-8).
     const bool continues_own = who == nlgs_member || who == apgd_member;
     if (who >= 0) {
       own = who == newton_start_member || who == admm_member || continues_own ? who : -1;
@@ -947,7 +948,7 @@ class Auto : public Solver {
     // wet_pile_3d from step 1400 of `nlgs`'s run: 0.38 -> 0.20 s, `nlgs` 0.17). Given W
     // (the floor's APGD run) too: the mortar wall, step 100, 1e-4, APGD's run at 8.5e-4 →
     // 9.7e-4 in one slice, then ADMM got 2× APGD's whole work before APGD's next slice took
-    // it to 9.1e-5 (docs/solvers.md "Guarantee": worst at 1e-4 4.24 → 3.77).
+    // it to 9.1e-5 (docs/solvers.md "Guarantee": worst at 1e-4 4.24 → 3.77, on 18cca7e).
     if (who == apgd_member && reached > from && before > 0) ms.rate = before;
     ms.fruitless = gain < std::log(1 / 0.99) ? ms.fruitless + 1 : 0;
     if (best_err_ > tol_)
