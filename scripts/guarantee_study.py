@@ -12,11 +12,14 @@ reaches it.
 
     python3 scripts/guarantee_study.py [--moreau build/bin/moreau] [--corpus build/corpus]
         [--tolerances 1e-4 1e-8] [--k K] [--jobs 2] [--csv build/guarantee.csv]
+        [--members-from build/guarantee.csv] [--worst N]
 
 --k defaults to the stated k, read from the one place that states it: `stated_k` in
 tests/solvers/test_auto_guarantee.cpp (the ctest AutoGuarantee.* checks the same k on its
-pairs). About 90 s on 2 cores for the reduced corpus (129 problems, 258 pairs), plus ~10 s
-to make the corpus when --corpus has none.
+pairs). About 5 minutes on the shared 2 cores for the reduced corpus (129 problems, 258
+pairs), plus ~10 s to make the corpus when --corpus has none; with --members-from (the
+members' figures from an earlier --csv of the same corpus and members' code: only auto
+runs) about 35 s, to compare versions of auto's rule.
 """
 import argparse
 import concurrent.futures
