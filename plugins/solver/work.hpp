@@ -131,6 +131,26 @@ struct WorkCosts {
   /// (FCLib) count as before.
   static constexpr double newton_step_call = 1e5;
 
+  /// NLGS's sweep over W's rows in a time step whose problem comes with W (finite-element
+  /// bodies: no rigid factor, no body records), as `auto` counts it: `w_rows_step` times the
+  /// sweep of `of()`. Measured as shadows of an `apgd` run (300 steps at 1e-3, CPU ns per
+  /// counted unit, `nlgs` and `apgd` alone, i15-fe): NLGS over APGD 2.7 on
+  /// elastic_block_hit_by_spheres_3d (4 contacts: 1.08 against 0.40), 3.1 on
+  /// elastic_bar_on_wall_2d, 1.8 on elastic_disk_on_plane_2d, 2.1 on grains_on_elastic_beam_2d
+  /// and 0.86 on blocks_on_elastic_slab_3d (26 contacts, W dense: its products are not
+  /// short). With the same count `auto` took NLGS first and interleaved it with APGD on
+  /// elastic_block_hit_by_spheres_3d, 2.45× `apgd` there. 2, not 2.7–3.1: on
+  /// grains_on_elastic_beam_2d `nlgs` is the faster member (0.84× `apgd` in CPU, 0.40× in
+  /// counts), and stays cheaper at 2 (0.81× in counts). Only in a time step (the
+  /// time-stepper's LocalProblem::error_scale set): problems given with W outside one (FCLib,
+  /// the guarantee's corpus) and `nlgs` alone count as before.
+  static constexpr double w_rows_step = 2.0;
+  static WorkCosts with_w_in_step(const LocalProblem& P) {
+    WorkCosts c = of(P, false);
+    if (P.error_scale > 0) c.sweep *= w_rows_step;
+    return c;
+  }
+
   /// A sparse LU (or LDLᵀ) factorisation with these factors of an n × n matrix (Eigen's
   /// supernodal LU: a cost per column besides the fill and the flops).
   static double factorisation(double nnz_l, double nnz_u, double n) {

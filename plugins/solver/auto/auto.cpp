@@ -223,7 +223,7 @@ class Auto : public Solver {
       return rep;
     }
     if (!bodies_) sweeper_.prepare(P);
-    costs_ = WorkCosts::of(P, bodies_);
+    costs_ = bodies_ ? WorkCosts::of(P, true) : WorkCosts::with_w_in_step(P);  // NLGS over W's rows in a time step (work.hpp)
     bool nlgs_first = true;  // run the first NLGS stage (false: records far beyond the caches)
     if (bodies_) {
       const double record = static_cast<double>(body_sweeper_.record_size());
@@ -264,7 +264,7 @@ class Auto : public Solver {
     // Problems given with W (FCLib): the floor from the first stage on. In a time step (W
     // through the bodies) NLGS's first stage or the incumbent's slice is the first slice,
     // the floor acting from the slices on (a step that NLGS finishes costs what `nlgs` costs).
-    first_stage_cap_ = bodies_ ? inf : first_stage_cap(direct);
+    first_stage_cap_ = in_step() ? inf : first_stage_cap(direct);
 
     auto finish = [&]() {
       if (!std::isfinite(best_err_)) best_ = start_;  // no iterate was ever evaluated
@@ -355,7 +355,7 @@ class Auto : public Solver {
     // brick_wall_2d 26 % and box_tower_3d 90 % more solve time over 300 steps at 1e-3 (the
     // own runs and factorisations it pays for in the steps that reach the slices).
     while (best_err_ > tol_) {
-      if (!bodies_) {
+      if (!in_step()) {
         if (!floor_slice(m)) break;
         continue;
       }
@@ -655,6 +655,12 @@ class Auto : public Solver {
   /// spheres, and up to `check_every` sweeps: 10⁴ spheres, 50 steps, warm step 22.9 → 18.7
   /// ms without them). NLGS stays a member of the slices.
   bool beyond_caches() const { return bodies_ && !records_fit_; }
+  /// A time step: through the bodies, or given with W by the time-stepper (finite-element
+  /// bodies; LocalProblem::error_scale is set there, never for FCLib problems). There the
+  /// floor (floor.hpp) does not act: its own runs are the guarantee's on problems given
+  /// with W outside a time step; in time steps they cost 1.3–1.5× `apgd` on the
+  /// finite-element scenes (elastic_block_hit_by_spheres_3d, docs/solvers.md).
+  bool in_step() const { return bodies_ || P_->error_scale > 0; }
   /// The start's error before the slices (nlgs_sweeps = 0, or records beyond the caches).
   /// Without NLGS's records APGD measures it (it packs its product for its first slice
   /// anyway; that slice then continues from it): one product instead of two.
@@ -916,9 +922,11 @@ class Auto : public Solver {
     total_ += std::max<long>(s.iterations, 1);
     const double before = best_err_;
     keep(x, s.error);
-    // Through the bodies its u = W x + q is the one the time-stepper would get from APGD
-    // alone: finish() need not recompute it (with W given it is recomputed from W exactly).
-    if (bodies_ && who == apgd_member && best_err_ < before) {
+    // In a time step its u = W x + q is the one the time-stepper would get from APGD alone
+    // (through the bodies, or from W: the same W.apply as its recomputation): finish() need
+    // not recompute it. Problems given with W outside a time step (FCLib) recompute it, as
+    // the guarantee's counts have it.
+    if (in_step() && who == apgd_member && best_err_ < before) {
       best_u_ = v;
       best_u_ok_ = true;
     }
