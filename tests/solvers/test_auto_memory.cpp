@@ -4,6 +4,7 @@
 #include <cmath>
 #include <moreau/factor_matrix.hpp>
 
+#include "../work.hpp"  // plugins/solver (through the nlgs include directory)
 #include "factored_problem.hpp"
 #include "solver_cases.hpp"
 
@@ -228,4 +229,34 @@ TEST(AutoMemory, AMemberThatDidNotConvergeIsRememberedAtMostAtItsWorkToItsCap) {
     learnt += cost[k] > 0;
   }
   EXPECT_GE(learnt, 2) << "members tried and learnt";
+}
+
+TEST(AutoMemory, InATimeStepGivenWithWTheAnswerAPGDFinishesKeepsItsProduct) {
+  // Finite-element bodies: the time-stepper gives W itself (no factor), with its stopping
+  // scale (LocalProblem::error_scale). There, as through the bodies, the answer APGD
+  // finishes keeps APGD's u = W r + q (the same product `apgd` alone returns): no second
+  // product and error evaluation, a tenth of a warm step of blocks_on_elastic_slab_3d
+  // (docs/solvers.md "Finite-element scenes"). Given with W outside a time step (FCLib,
+  // the guarantee's counts), the answer's u and error are recomputed and counted as before.
+  // Here error_scale = ‖q‖, the FCLib measure: the same iterates, the same answer.
+  moreau::LocalProblem p = factored_problem(3, 20, 2, 40, 3u);
+  p.factor = moreau::BodyFactor{};  // W only
+  moreau::LocalProblem step = p;
+  step.error_scale = p.q.norm();
+  moreau::SolverReport rep[2];
+  Eigen::VectorXd r[2], u[2];
+  for (int in_step = 0; in_step < 2; ++in_step) {
+    auto a = make("auto", {{"tolerance", 1e-6}, {"remember", true}});
+    remembered_apgd(*a, 1e5, false);  // APGD first, on a budget it finishes within
+    r[in_step] = Eigen::VectorXd::Zero(p.q.size());
+    rep[in_step] = a->solve(in_step ? step : p, r[in_step], u[in_step]);
+    ASSERT_TRUE(rep[in_step].converged) << in_step;
+  }
+  EXPECT_EQ(r[1], r[0]) << "the same iterates";
+  // APGD's error from its own product: the same up to rounding (relative to ‖q‖, ~1e-16)
+  EXPECT_NEAR(rep[1].error, rep[0].error, 1e-13);
+  const Eigen::VectorXd exact = p.W * r[1] + p.q;
+  EXPECT_LE((u[1] - exact).norm(), 1e-12 * exact.norm()) << "APGD's u is W r + q";
+  const moreau::WorkCosts c = moreau::WorkCosts::of(p, false);
+  EXPECT_NEAR(rep[0].work - rep[1].work, c.product + c.error, 1e-9 * rep[0].work) << "the recomputation, outside a time step only";
 }
