@@ -996,7 +996,7 @@ class Auto : public Solver {
       // raises the estimate: before the run's first Newton solve it comes from W's size, and
       // a 3D LU fills in far beyond it (wet_pile_3d: ADMM's first step 1.1e7 units, Newton's
       // 3e7 a step, against an estimate of a few 10⁶).
-      if (bodies_)
+      if (in_step())
         for (int k : {newton_start_member, newton_member, admm_member}) step = std::max(step, m[k].per_iteration);
       // In a time step a factorisation also waits while NLGS or APGD, tried and not given
       // up, has had under a fifth of the work (they get their quarter first, below): near
@@ -1005,7 +1005,7 @@ class Auto : public Solver {
       // look (wet_pile_3d, a step of 650 contacts: APGD stopped after 160 steps at
       // 1.01e-3, Newton then took 1.5·10⁹ units; APGD alone converges there in 662 steps).
       int starved = -1;  // (the best by rate too: here it would not finish within the work spent)
-      if (bodies_)
+      if (in_step())
         for (int k : {nlgs_member, apgd_member})
           if (!excluded(m[k], k) && m[k].slices != 0 && m[k].spent < 0.2 * elapsed && (starved < 0 || m[k].spent < m[starved].spent))
             starved = k;
@@ -1014,7 +1014,7 @@ class Auto : public Solver {
         if (k < 0 || excluded(m[k], k) || m[k].slices != 0) continue;
         const bool factors = k != apgd_member && k != nlgs_member;
         const double probe = k == admm_member ? step : factors ? 4 * step : 0.0;
-        if ((probe > elapsed && (bodies_ || remaining < 4 * step)) || (factors && starved >= 0)) {
+        if ((probe > elapsed && (in_step() || remaining < 4 * step)) || (factors && starved >= 0)) {
           if (waiting < 0) waiting = k;
           continue;
         }
@@ -1043,8 +1043,8 @@ class Auto : public Solver {
   /// on a step: Newton's own run then took 0.88 s; with NLGS probed the run's solve stage
   /// 1.24 → 0.49 s). −1: no member.
   std::array<int, 5> probe_order() const {
-    if (cold_ && !bodies_) return {apgd_member, newton_member, newton_start_member, admm_member, -1};
-    if (bodies_ && records_fit_ && nlgs_sweeps_ > 0) return {apgd_member, nlgs_member, newton_start_member, newton_member, admm_member};
+    if (cold_ && !in_step()) return {apgd_member, newton_member, newton_start_member, admm_member, -1};
+    if ((bodies_ ? records_fit_ : in_step()) && nlgs_sweeps_ > 0) return {apgd_member, nlgs_member, newton_start_member, newton_member, admm_member};
     return {apgd_member, newton_start_member, newton_member, admm_member, -1};
   }
 
@@ -1060,7 +1060,7 @@ class Auto : public Solver {
   /// next 1000 steps by chance (box_tower_3d −45 %, brick_wall_2d +19 %).
   double probe_share(const std::array<MemberState, member_count>& m, int who) const {
     if (who != exploring_) return 1.0;
-    return who == apgd_member && m[who].slices == 0 && cold_ && !bodies_ ? 1.0 : 0.25;
+    return who == apgd_member && m[who].slices == 0 && cold_ && !in_step() ? 1.0 : 0.25;
   }
 
   /// The work a member still needs at its last rate, from where it would go on: the best
