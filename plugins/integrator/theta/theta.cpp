@@ -12,6 +12,7 @@
 // the start of the step, R⁻ I⁻¹ R⁻ᵀ, which is what compact_inverse() reports. Every field
 // is a node field of `rigid.nodes` (a rigid body is one node).
 #include <cmath>
+#include <stdexcept>
 #include <moreau/integrator.hpp>
 #include <moreau/rigid_fields.hpp>
 
@@ -42,6 +43,7 @@ class Theta : public Integrator {
         throw InputError("/time/integrator", "the theta integrator works on rigid bodies: modelization \"" +
                                                  model.node_set() + "\" has no rigid field '" + f + "'");
     inverse_fields_ = InverseFields::of(st);
+    node_fields_ = NodeFields{};  // resolved at the first step (fields may still be declared)
   }
 
   void free_velocity(StepContext& c) override {
@@ -62,15 +64,17 @@ class Theta : public Integrator {
     // the gap at q_θ keeps contacts from closing further during the step.
     State& st = c.state;
     const int d = st.dimension();
-    const std::size_t nb = st.set(R::nodes).rows();
+    const NodeFields& r = node_fields(st);
+    if (!r.px || !r.pq || !r.travel) throw std::logic_error("theta: the node set has no detection fields");
+    const std::size_t nb = r.nodes->rows();
     const double a = (1 - c.theta) * c.h;
-    const double* x = st.field(R::nodes, R::position).data(Depth::begin);
-    const double* v = st.field(R::nodes, R::velocity).data(Depth::begin);
-    const double* w = st.field(R::nodes, R::angular_velocity).data(Depth::begin);
-    const double* q = st.field(R::nodes, d == 2 ? R::angle : R::orientation).data(Depth::begin);
-    double* px = st.field(R::nodes, R::detection_position).data();
-    double* pq = st.field(R::nodes, R::detection_rotation).data();
-    double* travel = st.field(R::nodes, R::travel).data();
+    const double* x = r.x->data(Depth::begin);
+    const double* v = r.v->data(Depth::begin);
+    const double* w = r.w->data(Depth::begin);
+    const double* q = r.q->data(Depth::begin);
+    double* px = r.px->data();
+    double* pq = r.pq->data();
+    double* travel = r.travel->data();
     double g_norm = 0;
     for (double gk : c.gravity) g_norm += gk * gk;
     g_norm = std::sqrt(g_norm);
@@ -172,34 +176,74 @@ class Theta : public Integrator {
   };
   InverseFields inverse_fields_;
 
-  static double* ptr(State& st, const char* name, Depth d = Depth::end) {
-    Field* f = st.set(R::nodes).find(name);
-    return f ? f->data(d) : nullptr;
+  /// The node fields the step loops read, resolved once per State and its field count
+  /// instead of by name at every stage: the two map lookups (set, field) per field, 17 fields
+  /// in free_velocity and update_dofs, were a fifth of a one-body step's CPU time
+  /// (block_on_incline_2d). Fields keep their address for their State's life (deques, never
+  /// removed); a field declared later changes the count and re-resolves. Buffers swap
+  /// between depths, so data() is asked at each step.
+  struct NodeFields {
+    const State* state = nullptr;
+    std::size_t count = 0;  // fields of the node set when resolved
+    EntitySet* nodes = nullptr;
+    Field *x = nullptr, *v = nullptr, *w = nullptr, *q = nullptr, *vf = nullptr, *wf = nullptr, *im = nullptr,
+          *ii = nullptr, *I = nullptr, *F = nullptr, *T = nullptr, *P = nullptr, *imp = nullptr, *px = nullptr,
+          *pq = nullptr, *travel = nullptr;
+  };
+  NodeFields node_fields_;
+
+  const NodeFields& node_fields(State& st) {
+    NodeFields& r = node_fields_;
+    if (r.state == &st && r.nodes->fields().size() == r.count) return r;
+    r = NodeFields{};
+    r.state = &st;
+    r.nodes = &st.set(R::nodes);
+    r.count = r.nodes->fields().size();
+    EntitySet& s = *r.nodes;
+    r.x = s.find(R::position);
+    r.v = s.find(R::velocity);
+    r.w = s.find(R::angular_velocity);
+    r.q = s.find(st.dimension() == 2 ? R::angle : R::orientation);
+    r.vf = s.find(R::free_velocity);
+    r.wf = s.find(R::free_angular_velocity);
+    r.im = s.find(R::inverse_mass);
+    r.ii = s.find(R::inverse_inertia);
+    r.I = s.find(R::inertia);
+    r.F = s.find(R::force);
+    r.T = s.find(R::torque);
+    r.P = s.find(R::reaction);
+    r.imp = s.find(R::imposed_velocity);
+    r.px = s.find(R::detection_position);
+    r.pq = s.find(R::detection_rotation);
+    r.travel = s.find(R::travel);
+    return r;
   }
 
-  static Fields fields(State& st, bool forces, bool impulses) {
+  static double* ptr(Field* f, Depth d = Depth::end) { return f ? f->data(d) : nullptr; }
+
+  Fields fields(State& st, bool forces, bool impulses) {
+    const NodeFields& r = node_fields(st);
     Fields f{};
-    const bool two = st.dimension() == 2;
-    f.x0 = ptr(st, R::position, Depth::begin);
-    f.x1 = ptr(st, R::position, Depth::end);
-    f.v0 = ptr(st, R::velocity, Depth::begin);
-    f.v1 = ptr(st, R::velocity, Depth::end);
-    f.w0 = ptr(st, R::angular_velocity, Depth::begin);
-    f.w1 = ptr(st, R::angular_velocity, Depth::end);
-    f.q0 = ptr(st, two ? R::angle : R::orientation, Depth::begin);
-    f.q1 = ptr(st, two ? R::angle : R::orientation, Depth::end);
-    f.vf = ptr(st, R::free_velocity);
-    f.wf = ptr(st, R::free_angular_velocity);
-    f.im = ptr(st, R::inverse_mass);
-    f.ii = ptr(st, R::inverse_inertia);
-    f.I = ptr(st, R::inertia);
+    f.x0 = ptr(r.x, Depth::begin);
+    f.x1 = ptr(r.x, Depth::end);
+    f.v0 = ptr(r.v, Depth::begin);
+    f.v1 = ptr(r.v, Depth::end);
+    f.w0 = ptr(r.w, Depth::begin);
+    f.w1 = ptr(r.w, Depth::end);
+    f.q0 = ptr(r.q, Depth::begin);
+    f.q1 = ptr(r.q, Depth::end);
+    f.vf = ptr(r.vf);
+    f.wf = ptr(r.wf);
+    f.im = ptr(r.im);
+    f.ii = ptr(r.ii);
+    f.I = ptr(r.I);
     if (forces) {
-      f.F = ptr(st, R::force);
-      f.T = ptr(st, R::torque);
+      f.F = ptr(r.F);
+      f.T = ptr(r.T);
     }
-    f.P = impulses ? ptr(st, R::reaction) : nullptr;
-    f.imp = ptr(st, R::imposed_velocity);
-    f.n = st.set(R::nodes).rows();
+    f.P = impulses ? ptr(r.P) : nullptr;
+    f.imp = ptr(r.imp);
+    f.n = r.nodes->rows();
     return f;
   }
 
