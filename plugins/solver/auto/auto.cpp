@@ -226,9 +226,8 @@ class Auto : public Solver {
     costs_ = bodies_ ? WorkCosts::of(P, true) : WorkCosts::with_w_in_step(P);  // NLGS over W's rows in a time step (work.hpp)
     bool nlgs_first = true;  // run the first NLGS stage (false: records far beyond the caches)
     if (bodies_) {
-      const double record = static_cast<double>(body_sweeper_.record_size());
-      // memory-bound beyond the caches; records with M⁻¹Hᵀ blocks count more (work.hpp)
-      costs_.sweep = WorkCosts::body_sweep(P, record, body_sweeper_.dense_inverse_mass());
+      // NLGS's sweep cost (costs_.sweep) waits for the records' layout, done after the rest
+      // probe (lay_out_records()): nothing before reads it.
       // Where its cache factor reaches its cap (records beyond 4× the cache: about 2·10⁴ contacts
       // of spheres), the first NLGS stage costs as much as APGD's whole warm solve before its
       // rate is even measured (10⁴ spheres: ~50 ms a step), so the slices start at once, as
@@ -289,6 +288,12 @@ class Auto : public Solver {
     // After a step at rest the warm start's check first (a step still at rest ends there;
     // a challenge waits for a step that moves: at rest every member's cost is its check).
     if (rest_probe(u)) return finish();
+    if (bodies_) {
+      lay_out_records();
+      const double record = static_cast<double>(body_sweeper_.record_size());
+      // memory-bound beyond the caches; records with M⁻¹Hᵀ blocks count more (work.hpp)
+      costs_.sweep = WorkCosts::body_sweep(P, record, body_sweeper_.dense_inverse_mass());
+    }
     nlgs::fixed_last_order(P, order_);  // NLGS's order (only if the step goes on)
     const int inc = remember_ ? incumbent(m) : -1;
     bool challenged = false;  // a challenger ran first and lost
@@ -612,15 +617,38 @@ class Auto : public Solver {
   /// and they are packed when it first runs, if ever: at 10⁴ spheres the packing cost about
   /// 3 ms a step (5 % of APGD's warm solve), for nothing.
   /// `pack`: false when the solve starts with another remembered member (NLGS may not run).
+  /// Without packing, while the largest record a layout can give fits (records_fit_ is then
+  /// true whatever the layout), the layout waits for lay_out_records(): a solve that ends at
+  /// the rest probe never needs it, and its per-body isotropy check was the whole of `auto`'s
+  /// cost above `apgd`'s on cannonball_3d (0.19 µs of 1.7 µs a solve).
   void records(const LocalProblem& P, const Eigen::VectorXd& r, bool pack) {
-    body_sweeper_.layout(P);
-    records_fit_ = WorkCosts::record_bytes(P, static_cast<double>(body_sweeper_.record_size())) < 4 * WorkCosts::cache_bytes;
-    records_packed_ = records_fit_ && pack;
-    if (records_packed_) body_sweeper_.pack(P, r);
     // APGD's error at every step there too (branch i15-10k): every 3 steps missed the dips
     // of APGD's error, which is not monotone, and ran on (10⁴ spheres, 50 steps, with the
     // cheaper products: 8.4 steps a warm step against 4.7, 14.1–14.3 ms against 12.0–12.1).
     apgd_check_every_ = 1;
+    records_laid_out_ = false;
+    const bool rigid = (P.dim == 2 && P.factor.k == 3) || (P.dim == 3 && P.factor.k == 6);  // (else layout() says why not)
+    if (!pack && rigid && WorkCosts::record_bytes(P, largest_record(P)) < 4 * WorkCosts::cache_bytes) {
+      records_fit_ = true;
+      records_packed_ = false;
+      return;
+    }
+    lay_out_records();
+    records_packed_ = records_fit_ && pack;
+    if (records_packed_) body_sweeper_.pack(P, r);
+  }
+  /// NLGS's record layout for this solve (once) and whether its records fit.
+  void lay_out_records() {
+    if (records_laid_out_) return;
+    body_sweeper_.layout(*P_);
+    records_fit_ = WorkCosts::record_bytes(*P_, static_cast<double>(body_sweeper_.record_size())) < 4 * WorkCosts::cache_bytes;
+    records_laid_out_ = true;
+  }
+  /// An upper bound of BodySweeper::record_size() (its layout with d and k unknowns per body:
+  /// pd ≤ d, pk ≤ k; isotropic: pd² + pd + 5 + 2 pd pk, else pd² + pd + 1 + 4 pd pk).
+  static double largest_record(const LocalProblem& P) {
+    const double d = P.dim, k = P.factor.k;
+    return d * d + d + 5 + 4 * d * k;
   }
   /// APGD's step scaling (apgd_core.hpp): per direction (normal, tangential) where NLGS's
   /// records exceed the caches (there APGD does the work; measured faster on 10⁴ and 10⁵
@@ -673,7 +701,8 @@ class Auto : public Solver {
       o.state = &apgd_state_;
       o.recompute_error = false;
       o.scaling = apgd_scaling();
-      Eigen::VectorXd x = r;
+      Eigen::VectorXd& x = start_x_;  // kept over the solves: no allocation at each step
+      x = r;
       current_ = apgd_member;
       const SolverReport s = apgd::solve(*P_, o, x, u);
       ++apgd_slices_;
@@ -1194,6 +1223,8 @@ class Auto : public Solver {
   LocalProblem assembled_;
   bool assembled_ready_ = false;
   bool records_fit_ = false;     ///< NLGS's records fit in 4× the cache (records())
+  bool records_laid_out_ = false;  ///< body_sweeper_.layout() was done for this solve
+  Eigen::VectorXd start_x_;  ///< start_error()'s iterate (APGD's check of the start)
   Eigen::VectorXd best_u_;      ///< W best_ + q, when its member gave it (best_u_ok_)
   bool best_u_ok_ = false;
   std::vector<Eigen::Index> order_;
