@@ -352,9 +352,9 @@ void ContactStages::warm_start(StepContext& c) {
   const int d = st.dimension();
   EntitySet& set = st.set(sets::contacts);
   const std::size_t nc = contacts_.size();
+  const ContactFieldRefs& f = contact_fields(set);
   {
-    const Field& keys = set.field(C::key);
-    const double* kv = keys.data(Depth::begin);
+    const double* kv = f.key->data(Depth::begin);
     previous_keys_.clear();
     for (std::size_t a = 0; a < set.rows(); ++a)
       previous_keys_.emplace_back(contact_key(static_cast<int>(kv[3 * a]), static_cast<int>(kv[3 * a + 1]),
@@ -373,12 +373,12 @@ void ContactStages::warm_start(StepContext& c) {
   }
   continue_nearby(set, from);
   set.rebuild(from);
-  double* bodies = set.field(C::bodies).data();
-  double* key = set.field(C::key).data();
-  double* point = set.field(C::point).data();
-  double* normal = set.field(C::normal).data();
-  double* gap = set.field(C::gap).data();
-  double* law = set.field(C::law).data();
+  double* bodies = f.bodies->data();
+  double* key = f.key->data();
+  double* point = f.point->data();
+  double* normal = f.normal->data();
+  double* gap = f.gap->data();
+  double* law = f.law->data();
   for (std::size_t a = 0; a < nc; ++a) {
     const Detected& ct = contacts_[a];
     bodies[2 * a] = contactors[ct.contactor[0]].body;
@@ -393,8 +393,27 @@ void ContactStages::warm_start(StepContext& c) {
     gap[a] = ct.point.gap;
     law[a] = ct.law;
   }
-  const double* impulse = set.field(C::impulse).data();
+  const double* impulse = f.impulse->data();
   r_ = Eigen::Map<const Eigen::VectorXd>(impulse, static_cast<Eigen::Index>(nc * d));
+}
+
+const ContactStages::ContactFieldRefs& ContactStages::contact_fields(EntitySet& set) {
+  ContactFieldRefs& f = contact_fields_;
+  if (f.set == &set && f.count == set.fields().size()) return f;
+  f.set = &set;
+  f.count = set.fields().size();
+  f.key = &set.field(C::key);  // (each throws when the set lacks it, as the lookups by name did)
+  f.bodies = &set.field(C::bodies);
+  f.point = &set.field(C::point);
+  f.normal = &set.field(C::normal);
+  f.gap = &set.field(C::gap);
+  f.law = &set.field(C::law);
+  f.impulse = &set.field(C::impulse);
+  f.force = &set.field(C::force);
+  f.normal_force = &set.field(C::normal_force);
+  f.status = &set.field(C::status);
+  f.velocity = &set.field(C::velocity);
+  return f;
 }
 
 void ContactStages::continue_nearby(const EntitySet& set, std::vector<std::ptrdiff_t>& from) {
@@ -454,6 +473,7 @@ void ContactStages::setup_solver(State& state) {
 
 void ContactStages::restored(State& state, bool solver_state) {
   initial_overlaps_checked_ = true;
+  contact_fields_ = {};  // resolved anew (the set was loaded)
   if (solver_state_ && solver_state) solver->load_state(state.set(sets::solver));
 }
 
@@ -626,13 +646,13 @@ void ContactStages::store_reactions(StepContext& c) {
   c.contact_impulses = true;
   // The contacts' own results: the impulse (next step's warm start), the world force, the
   // local velocity and the status.
-  EntitySet& set = st.set(sets::contacts);
-  double* impulse = set.field(C::impulse).data();
-  double* force = set.field(C::force).data();
-  double* normal_force = set.field(C::normal_force).data();
-  double* status = set.field(C::status).data();
-  double* velocity = set.field(C::velocity).data();
-  const double* normal = set.field(C::normal).data();
+  const ContactFieldRefs& f = contact_fields(st.set(sets::contacts));
+  double* impulse = f.impulse->data();
+  double* force = f.force->data();
+  double* normal_force = f.normal_force->data();
+  double* status = f.status->data();
+  double* velocity = f.velocity->data();
+  const double* normal = f.normal->data();
   for (std::size_t a = 0; a < contacts_.size(); ++a) {
     const double* r = r_.data() + a * d;
     double frame_rows[3][3] = {};

@@ -117,6 +117,18 @@ class ContactStages {
   /// Numbers the contactors' shape names and finds the detector of each ordered pair of
   /// them once (narrow_phase), instead of comparing names for every pair of every step.
   void index_shape_kinds();
+  /// The `contacts` set's fields warm_start() and store_reactions() write at every step,
+  /// resolved once per set and field count instead of by name (a map of strings each):
+  /// with the integrator's such lookups they were a fifth of a one-body step's CPU (libc
+  /// memcmp, block_on_incline_2d). A Field keeps its address (EntitySet's deque).
+  struct ContactFieldRefs {
+    const EntitySet* set = nullptr;
+    std::size_t count = 0;
+    Field *key = nullptr, *bodies = nullptr, *point = nullptr, *normal = nullptr, *gap = nullptr, *law = nullptr,
+          *impulse = nullptr, *force = nullptr, *normal_force = nullptr, *status = nullptr, *velocity = nullptr;
+  };
+  ContactFieldRefs contact_fields_;
+  const ContactFieldRefs& contact_fields(EntitySet& set);
   std::vector<int> shape_kind_;                     ///< per contactor: the index of its shape name
   std::vector<const DetectorUse*> kind_detector_;   ///< kinds × kinds: detector_for() of the two names
   std::size_t kinds_ = 0;
