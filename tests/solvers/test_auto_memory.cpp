@@ -264,8 +264,8 @@ TEST(AutoMemory, InATimeStepGivenWithWTheAnswerAPGDFinishesKeepsItsProduct) {
 TEST(AutoMemory, AWinnerThatFinishedFromAnotherMembersIterateIsLearnt) {
   // A cold solve where NLGS's first stage and slices improve the best iterate and APGD
   // finishes from it: APGD, the winner, did not run from the warm start alone, yet it is
-  // what the step needs, so it is learnt (at the solve's work: its own is below what it
-  // takes from the warm start) and is the next solve's incumbent. Before, it was not
+  // what the step needs, so it is learnt (at its own work) and is the next solve's
+  // incumbent. Before, it was not
   // learnt; here nothing was remembered (NLGS's need was unknown), and on mortar_wall_2d at
   // 1e-8 only ADMM, which failed, was: its need was the next challenger's budget.
   const moreau::LocalProblem p = factored(2, 4, 8, 1u);
@@ -277,29 +277,6 @@ TEST(AutoMemory, AWinnerThatFinishedFromAnotherMembersIterateIsLearnt) {
   a->save_state(after);
   const double* cost = after.field("member_cost").data();
   EXPECT_GT(cost[1], 0.0) << "APGD, the winner, is learnt";
-  EXPECT_LE(cost[1], rep.work / 8) << "at most the solve's work";
+  EXPECT_LT(cost[1], rep.work / 8) << "at its own work, below the solve's";
   EXPECT_TRUE(cost[0] == 0 || cost[0] > cost[1]) << "and is the incumbent";
-}
-
-TEST(AutoMemory, AMemberRememberedFarAboveTheBudgetIsNotTriedFirst) {
-  // APGD remembered at 10⁵ a contact (the incumbent), ADMM at 10⁹ (a need extrapolated
-  // after it stalled) and due for a try: it cannot win within APGD's budget, so it is not
-  // tried (its turn is put off, as for a member whose first iterations exceed the budget).
-  // Before, it was tried on APGD's budget and lost (mortar_wall_2d at 1e-8: 6.4·10⁶ units a try).
-  const moreau::LocalProblem p = factored(2, 8, 16, 11u);
-  auto a = make("auto", {{"tolerance", 1e-6}, {"remember", true}});
-  moreau::EntitySet set = state_set(*a);
-  set.field("solves").data()[0] = 10;
-  for (int k = 0; k < 5; ++k) {
-    set.field("member_cost").data()[k] = k == 1 ? 1e5 : k == 4 ? 1e9 : 0.0;
-    set.field("member_next_try").data()[k] = k == 4 ? 0 : 1e6;
-    set.field("member_try_interval").data()[k] = 4;
-  }
-  a->load_state(set);
-  Eigen::VectorXd r = Eigen::VectorXd::Zero(p.q.size()), u;
-  ASSERT_TRUE(a->solve(p, r, u).converged);
-  moreau::EntitySet after = state_set(*a);
-  a->save_state(after);
-  EXPECT_EQ(after.field("member_try_interval").data()[4], 8.0) << "its turn put off";
-  EXPECT_EQ(after.field("member_cost").data()[4], 1e9) << "ADMM did not run";
 }
