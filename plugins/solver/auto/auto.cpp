@@ -627,8 +627,9 @@ class Auto : public Solver {
     // cheaper products: 8.4 steps a warm step against 4.7, 14.1–14.3 ms against 12.0–12.1).
     apgd_check_every_ = 1;
     records_laid_out_ = false;
-    const bool rigid = (P.dim == 2 && P.factor.k == 3) || (P.dim == 3 && P.factor.k == 6);  // (else layout() says why not)
-    if (!pack && rigid && WorkCosts::record_bytes(P, largest_record(P)) < 4 * WorkCosts::cache_bytes) {
+    const int d = P.dim, k = P.factor.k;
+    if (!pack && nlgs::BodySweeper::supports(d, k) &&  // (else layout() says why not)
+        records_would_fit(static_cast<double>(nlgs::BodySweeper::largest_record_size(d, k)))) {
       records_fit_ = true;
       records_packed_ = false;
       return;
@@ -641,15 +642,11 @@ class Auto : public Solver {
   void lay_out_records() {
     if (records_laid_out_) return;
     body_sweeper_.layout(*P_);
-    records_fit_ = WorkCosts::record_bytes(*P_, static_cast<double>(body_sweeper_.record_size())) < 4 * WorkCosts::cache_bytes;
+    records_fit_ = records_would_fit(static_cast<double>(body_sweeper_.record_size()));
     records_laid_out_ = true;
   }
-  /// An upper bound of BodySweeper::record_size() (its layout with d and k unknowns per body:
-  /// pd ≤ d, pk ≤ k; isotropic: pd² + pd + 5 + 2 pd pk, else pd² + pd + 1 + 4 pd pk).
-  static double largest_record(const LocalProblem& P) {
-    const double d = P.dim, k = P.factor.k;
-    return d * d + d + 5 + 4 * d * k;
-  }
+  /// Whether this problem's NLGS records of `record` doubles fit in 4× the cache.
+  bool records_would_fit(double record) const { return WorkCosts::record_bytes(*P_, record) < 4 * WorkCosts::cache_bytes; }
   /// APGD's step scaling (apgd_core.hpp): per direction (normal, tangential) where NLGS's
   /// records exceed the caches (there APGD does the work; measured faster on 10⁴ and 10⁵
   /// spheres, docs/solvers.md "Large problems"), one scalar per contact elsewhere: on the

@@ -128,6 +128,16 @@ bool isotropic(const double* Mi, int d, int k, double& mt, double& mr) {
 
 }  // namespace
 
+BodySweeper::Offsets BodySweeper::offsets(int pd, int pk, bool iso) {
+  const int H = pd * pd + pd + 1 + (iso ? 4 : 0);
+  const int G = H + 2 * pd * pk;
+  return {H, G, static_cast<std::size_t>(G + (iso ? 0 : 2 * pd * pk))};
+}
+
+std::size_t BodySweeper::largest_record_size(int d, int k) {
+  return std::max(offsets(d, k, true).stride, offsets(d, k, false).stride);
+}
+
 void BodySweeper::prepare(const LocalProblem& P, const Eigen::VectorXd& r) {
   layout(P);
   pack(P, r);
@@ -140,7 +150,7 @@ void BodySweeper::layout(const LocalProblem& P) {
   k_ = f.k;
   problem_ = &P;
   const int d = d_, k = k_;
-  if (!((d == 2 && k == 3) || (d == 3 && k == 6)))
+  if (!supports(d, k))
     throw InputError("/solver/exchange", "\"bodies\" supports rigid bodies (2D: 3 unknowns per body, 3D: 6), not dim " +
                 std::to_string(d) + " with " + std::to_string(k));
   const bool frictionless = (P.mu.array() == 0.0).all();
@@ -160,9 +170,10 @@ void BodySweeper::layout(const LocalProblem& P) {
     double mt, mr;
     iso_ = isotropic(&f.inverse_mass[static_cast<std::size_t>(b) * k * k], d, k, mt, mr);
   }
-  off_H_ = pd * pd + pd + 1 + (iso_ ? 4 : 0);
-  off_G_ = off_H_ + 2 * pd * pk;
-  stride_ = static_cast<std::size_t>(off_G_ + (iso_ ? 0 : 2 * pd * pk));
+  const Offsets o = offsets(pd, pk, iso_);
+  off_H_ = o.H;
+  off_G_ = o.G;
+  stride_ = o.stride;
 }
 
 void BodySweeper::pack(const LocalProblem& P, const Eigen::VectorXd& r) {

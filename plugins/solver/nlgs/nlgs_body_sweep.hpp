@@ -42,6 +42,12 @@ class BodySweeper {
   void reset_velocities(const Eigen::VectorXd& r);
   /// Doubles per contact record (what a sweep reads per contact): for cost models.
   std::size_t record_size() const { return stride_; }
+  /// Whether records can be made for contact dimension d and k unknowns per body: rigid
+  /// bodies (2D: 3, 3D: 6); layout() throws otherwise.
+  static bool supports(int d, int k) { return (d == 2 && k == 3) || (d == 3 && k == 6); }
+  /// The most doubles a record can take for d and k, whatever μ and the inverse masses: the
+  /// bound of record_size() for a caller that decides before layout() (`auto`).
+  static std::size_t largest_record_size(int d, int k);
   /// Whether the records carry M⁻¹Hᵀ blocks (bodies whose inverse mass is not one scalar per
   /// block: boxes, polygons, clusters), whose Δv updates are dense products: for cost models.
   bool dense_inverse_mass() const { return !iso_ && pd_ == d_ && pk_ == k_; }
@@ -50,6 +56,13 @@ class BodySweeper {
   int d_ = 3, k_ = 6;         ///< the problem's: contact dimension, unknowns per body
   int pd_ = 3, pk_ = 6;       ///< packed: rows kept per contact (d, or 1 frictionless), columns per body
   bool iso_ = false;          ///< every moving body's M⁻¹ is one scalar per block: records keep those, not G
+  /// Where H₀ and G₀ start in a record, and its doubles, for pd rows, pk columns and
+  /// scalar inverse masses or not (the layout of rec_ below).
+  struct Offsets {
+    int H, G;
+    std::size_t stride;
+  };
+  static Offsets offsets(int pd, int pk, bool iso);
   int off_H_ = 0, off_G_ = 0; ///< where H₀ and G₀ start in a record
   std::size_t stride_ = 0;    ///< doubles per record
   std::vector<char> layout_checked_;  ///< layout()'s scratch: per body, its inverse mass checked
