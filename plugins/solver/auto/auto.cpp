@@ -651,6 +651,7 @@ class Auto : public Solver {
   /// records exceed the caches (there APGD does the work; measured faster on 10⁴ and 10⁵
   /// spheres, docs/solvers.md "Large problems"), one scalar per contact elsewhere: on the
   /// example scenes and the FCLib corpus it was faster on some and slower on others.
+  apgd::Scaling apgd_scaling() const { return beyond_caches() ? apgd::Scaling::normal_tangent : apgd::Scaling::contact; }
   /// APGD's options for a slice of one of auto's APGD runs (the rule's, or the floor's own
   /// run): its caps, the solve's work counter, and the error taken from the iteration
   /// (finish() recomputes the answer's).
@@ -668,7 +669,6 @@ class Auto : public Solver {
     a.recompute_error = false;
     return a;
   }
-  apgd::Scaling apgd_scaling() const { return beyond_caches() ? apgd::Scaling::normal_tangent : apgd::Scaling::contact; }
   /// A time step whose NLGS records exceed 4× the cache (about 2·10⁴ contacts of spheres):
   /// APGD does the work there, and `auto` adds nothing to what `apgd` alone would do on a
   /// warm-started step. NLGS's first stage is skipped (solve()); NLGS is not a challenger
