@@ -19,6 +19,13 @@ moreau::EntitySet state_set(const moreau::Solver& s) {
   return set;
 }
 
+/// The solver's state as save_state() writes it.
+moreau::EntitySet saved_state(const moreau::Solver& s) {
+  moreau::EntitySet set = state_set(s);
+  s.save_state(set);
+  return set;
+}
+
 std::vector<double> values(const moreau::EntitySet& set) {
   std::vector<double> v;
   for (const auto& f : set.fields()) v.insert(v.end(), f.data(), f.data() + f.components());
@@ -66,8 +73,7 @@ TEST(AutoMemory, AfterAStepAtRestTheWarmStartIsCheckedFirst) {
     out[at_rest] = answer;
     rep[at_rest] = a->solve(p, out[at_rest], vel[at_rest]);
     ASSERT_TRUE(rep[at_rest].converged) << at_rest;
-    moreau::EntitySet after = state_set(*a);
-    a->save_state(after);
+    moreau::EntitySet after = saved_state(*a);
     EXPECT_EQ(after.field("at_rest").data()[0], 1.0) << "the warm start was the answer";
   }
   EXPECT_EQ(rep[0].iterations, 1) << "APGD's check";
@@ -102,8 +108,7 @@ TEST(AutoMemory, AChallengerThatWinsAtItsFirstCheckIsLearnt) {
   const moreau::SolverReport rep = a->solve(p, r, u);
   ASSERT_TRUE(rep.converged);
   EXPECT_EQ(rep.iterations, 1) << "APGD's check";
-  moreau::EntitySet after = state_set(*a);
-  a->save_state(after);
+  moreau::EntitySet after = saved_state(*a);
   const double apgd = after.field("member_cost").data()[1];
   EXPECT_EQ(apgd, rep.work / 16) << "learnt at what it took";
   EXPECT_EQ(after.field("member_cost").data()[0], 1e6) << "NLGS did not run";
@@ -127,8 +132,7 @@ TEST(AutoMemory, TheRememberedMemberIsLearntAtWhatItTookPastItsBudget) {
     ASSERT_TRUE(rep.converged) << k;
     took = rep.work / 16;
     expected *= 2;
-    moreau::EntitySet after = state_set(*a);
-    a->save_state(after);
+    moreau::EntitySet after = saved_state(*a);
     EXPECT_EQ(after.field("member_cost").data()[1], expected) << "solve " << k << ": APGD's memory doubles";
   }
   EXPECT_GT(took, 3 * expected) << "still below what it takes";
@@ -147,8 +151,7 @@ TEST(AutoMemory, LoadedIntoAnotherInstanceTheLaterSolvesAreBitIdentical) {
   auto a = make("auto", params);
   Eigen::VectorXd ra, u;
   for (int k = 0; k < 12; ++k) ASSERT_TRUE(a->solve(at(k), ra, u).converged) << k;
-  moreau::EntitySet saved = state_set(*a);
-  a->save_state(saved);
+  moreau::EntitySet saved = saved_state(*a);
   const auto& cost = saved.field("member_cost");
   EXPECT_GT(*std::max_element(cost.data(), cost.data() + cost.components()), 0.0) << "it has learnt something";
   EXPECT_EQ(saved.field("solves").data()[0], 12.0);
@@ -163,9 +166,7 @@ TEST(AutoMemory, LoadedIntoAnotherInstanceTheLaterSolvesAreBitIdentical) {
     ASSERT_EQ(ra.size(), rb.size());
     for (Eigen::Index i = 0; i < ra.size(); ++i) ASSERT_EQ(ra[i], rb[i]) << "solve " << k << ", r[" << i << "]";
   }
-  moreau::EntitySet sa = state_set(*a), sb = state_set(*b);
-  a->save_state(sa);
-  b->save_state(sb);
+  const moreau::EntitySet sa = saved_state(*a), sb = saved_state(*b);
   EXPECT_EQ(values(sa), values(sb));
 }
 
@@ -193,8 +194,7 @@ TEST(AutoMemory, InATimeStepNewtonWaitsForTheWorkOfItsProbe) {
   for (int direct = 0; direct < 2; ++direct) {
     auto a = make("auto", {{"tolerance", 1e-6}, {"remember", true}, {"direct_max_contacts", direct ? 1000 : 0}});
     remembered_apgd(*a, 1.0, false);
-    moreau::EntitySet mem = state_set(*a);
-    a->save_state(mem);
+    moreau::EntitySet mem = saved_state(*a);
     mem.field("member_iteration").data()[2] = step;
     a->load_state(mem);
     Eigen::VectorXd r = Eigen::VectorXd::Zero(p.q.size()), u;
@@ -220,8 +220,7 @@ TEST(AutoMemory, AMemberThatDidNotConvergeIsRememberedAtMostAtItsWorkToItsCap) {
   Eigen::VectorXd r = Eigen::VectorXd::Zero(p.q.size()), u;
   const moreau::SolverReport rep = a->solve(p, r, u);
   ASSERT_FALSE(rep.converged);
-  moreau::EntitySet after = state_set(*a);
-  a->save_state(after);
+  moreau::EntitySet after = saved_state(*a);
   const double* cost = after.field("member_cost").data();
   int learnt = 0;
   for (int k = 0; k < 5; ++k) {
@@ -265,16 +264,15 @@ TEST(AutoMemory, AWinnerThatFinishedFromAnotherMembersIterateIsLearnt) {
   // A cold solve where NLGS's first stage and slices improve the best iterate and APGD
   // finishes from it: APGD, the winner, did not run from the warm start alone, yet it is
   // what the step needs, so it is learnt (at its own work) and is the next solve's
-  // incumbent. Before, it was not
-  // learnt; here nothing was remembered (NLGS's need was unknown), and on mortar_wall_2d at
-  // 1e-8 only ADMM, which failed, was: its need was the next challenger's budget.
+  // incumbent. Before, it was not learnt; here nothing was remembered (NLGS's need was
+  // unknown), and on mortar_wall_2d at 1e-8 only ADMM, which failed, was: its need was the
+  // next challenger's budget.
   const moreau::LocalProblem p = factored(2, 4, 8, 1u);
   auto a = make("auto", {{"tolerance", 1e-8}, {"remember", true}, {"direct_max_contacts", 0}});
   Eigen::VectorXd r = Eigen::VectorXd::Zero(p.q.size()), u;
   const moreau::SolverReport rep = a->solve(p, r, u);
   ASSERT_TRUE(rep.converged);
-  moreau::EntitySet after = state_set(*a);
-  a->save_state(after);
+  moreau::EntitySet after = saved_state(*a);
   const double* cost = after.field("member_cost").data();
   EXPECT_GT(cost[1], 0.0) << "APGD, the winner, is learnt";
   EXPECT_LT(cost[1], rep.work / 8) << "at its own work, below the solve's";
