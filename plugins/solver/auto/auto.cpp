@@ -147,35 +147,43 @@ class Auto : public Solver {
             f("member_try_interval", member_count, "1", "auto: solves between two such tries", FileType::int32),
             f("at_rest", 1, "1", "auto: 1 when the last solve's warm start met the tolerance at its first check (a step at rest), else 0", FileType::int32)};
   }
+  // Called after every step's solve: the six fields are found by their index in the set
+  // (state_data()), not looked up by name at each step (a map of strings each, two of the
+  // names beyond the short-string buffer: about 2·10³ instructions a step, more than a
+  // light solve's own bookkeeping on cannonball_3d).
   void save_state(EntitySet& set) const override {
     if (!remember_) return;
-    set.field("solves").data()[0] = static_cast<double>(solve_index_);
-    double *cost = set.field("member_cost").data(), *step = set.field("member_iteration").data();
-    double *next = set.field("member_next_try").data(), *interval = set.field("member_try_interval").data();
+    std::array<double*, 6> f;
+    state_data(set, f);
+    f[0][0] = static_cast<double>(solve_index_);
+    double *cost = f[1], *step = f[2], *next = f[3], *interval = f[4];
     for (int k = 0; k < member_count; ++k) {
       cost[k] = memory_[k].cost;
       step[k] = memory_[k].step;
       next[k] = static_cast<double>(memory_[k].next_probe);
       interval[k] = static_cast<double>(memory_[k].interval);
     }
-    set.field("at_rest").data()[0] = at_rest_ ? 1.0 : 0.0;
+    f[5][0] = at_rest_ ? 1.0 : 0.0;
   }
   void load_state(const EntitySet& set) override {
     if (!remember_) return;
-    solve_index_ = static_cast<long>(set.field("solves").data()[0]);
-    const double *cost = set.field("member_cost").data(), *step = set.field("member_iteration").data();
-    const double *next = set.field("member_next_try").data(), *interval = set.field("member_try_interval").data();
+    std::array<const double*, 6> f;
+    state_data(set, f);
+    solve_index_ = static_cast<long>(f[0][0]);
+    const double *cost = f[1], *step = f[2], *next = f[3], *interval = f[4];
     for (int k = 0; k < member_count; ++k) {
       memory_[k].cost = cost[k];
       memory_[k].step = step[k];
       memory_[k].next_probe = static_cast<long>(next[k]);
       memory_[k].interval = std::max(1L, static_cast<long>(interval[k]));
     }
-    at_rest_ = set.field("at_rest").data()[0] != 0;
+    at_rest_ = f[5][0] != 0;
   }
 
   SolverReport solve(const LocalProblem& P, Eigen::VectorXd& r, Eigen::VectorXd& u) override {
     const int d = P.dim;
+    sweep_costed_ = false;  // NLGS's preparations, each when first needed in this solve (sweep_cost())
+    nlgs_ready_ = false;
     const Eigen::Index nc = P.contacts(), n = d * nc;
     SolverReport rep;
     if (r.size() != n || !r.allFinite()) r = Eigen::VectorXd::Zero(n);
@@ -203,12 +211,12 @@ class Auto : public Solver {
         u = P.q;
         start_err = natural_map_error(P, r, u);
       }
-      if (bodies_ && !(start_err <= tol_)) records(P, r, true);
+      if (bodies_ && !(start_err <= tol_)) records(P, true);
     } else if (bodies_) {
       // A solve that starts with another remembered member, or after a step at rest with the
       // warm start's check (rest_probe(), through APGD's product), packs NLGS's records only
       // if NLGS runs (run_nlgs()).
-      records(P, r, !at_rest_ && !starts_with_another_member(nc <= direct_max_contacts_));  // once per solve
+      records(P, !at_rest_ && !starts_with_another_member(nc <= direct_max_contacts_));  // once per solve
     } else {
       velocities(r, u);
       start_err = natural_map_error(P, r, u);
@@ -222,7 +230,6 @@ class Auto : public Solver {
       rep.work = start_work(P, r);
       return rep;
     }
-    if (!bodies_) sweeper_.prepare(P);
     costs_ = bodies_ ? WorkCosts::of(P, true) : WorkCosts::with_w_in_step(P);  // NLGS over W's rows in a time step (work.hpp)
     bool nlgs_first = true;  // run the first NLGS stage (false: records far beyond the caches)
     if (bodies_) {
@@ -288,14 +295,10 @@ class Auto : public Solver {
     // After a step at rest the warm start's check first (a step still at rest ends there;
     // a challenge waits for a step that moves: at rest every member's cost is its check).
     if (rest_probe(u)) return finish();
-    if (bodies_) {
-      lay_out_records();
-      const double record = static_cast<double>(body_sweeper_.record_size());
-      // memory-bound beyond the caches; records with M⁻¹Hᵀ blocks count more (work.hpp)
-      costs_.sweep = WorkCosts::body_sweep(P, record, body_sweeper_.dense_inverse_mass());
-    }
-    nlgs::fixed_last_order(P, order_);  // NLGS's order (only if the step goes on)
     const int inc = remember_ ? incumbent(m) : -1;
+    // NLGS's sweep cost now if NLGS may run or be weighed before the slices (first, or as
+    // the challenger, whose turn challenger() checks): else it waits (sweep_cost()).
+    if (inc < 0 || inc == nlgs_member || memory_[nlgs_member].next_probe <= solve_index_) sweep_cost();
     bool challenged = false;  // a challenger ran first and lost
     if (inc >= 0) {
       const int c = challenger(m, inc);
@@ -354,6 +357,7 @@ class Auto : public Solver {
       start_error(r, u);
     }
     if (!std::isfinite(best_err_)) return finish();
+    sweep_cost();  // the slices weigh NLGS's sweeps
 
     // 2. Slices that double, to the member expected to finish first; under the floor for a
     // problem given with W (floor.hpp). In a time step, as before the floor: there it cost
@@ -605,7 +609,8 @@ class Auto : public Solver {
   void velocities(const Eigen::VectorXd& x, Eigen::VectorXd& v) {
     if (!bodies_) {
       v = P_->W * x + P_->q;
-    } else if (records_packed_) {
+    } else if (records_packed_ || pack_due_) {
+      if (!records_packed_) pack_records(x);
       body_sweeper_.velocities(x, v);
     } else if (!(apgd_slices_ > 0 && apgd::velocities(apgd_state_, *P_, x, v))) {
       multiply_w(P_->dim, P_->factor, x, v, impulse_, dv_);
@@ -621,22 +626,53 @@ class Auto : public Solver {
   /// true whatever the layout), the layout waits for lay_out_records(): a solve that ends at
   /// the rest probe never needs it, and its per-body isotropy check was the whole of `auto`'s
   /// cost above `apgd`'s on cannonball_3d (0.19 µs of 1.7 µs a solve).
-  void records(const LocalProblem& P, const Eigen::VectorXd& r, bool pack) {
+  /// `pack` (the records' product serves velocities() from the start) is kept as due
+  /// (pack_due_), and the records are packed when first used (pack_records(), run_nlgs()):
+  /// a solve whose challenger finishes it never packs them (cannonball_3d's second solve:
+  /// 2.7·10⁴ instructions of 1.2·10⁵). Every product then goes the same way as when they
+  /// were packed here (the same records; Δv is set from the iterate at each use).
+  void records(const LocalProblem& P, bool pack) {
     // APGD's error at every step there too (branch i15-10k): every 3 steps missed the dips
     // of APGD's error, which is not monotone, and ran on (10⁴ spheres, 50 steps, with the
     // cheaper products: 8.4 steps a warm step against 4.7, 14.1–14.3 ms against 12.0–12.1).
     apgd_check_every_ = 1;
     records_laid_out_ = false;
+    records_packed_ = false;
     const int d = P.dim, k = P.factor.k;
-    if (!pack && nlgs::BodySweeper::supports(d, k) &&  // (else layout() says why not)
+    if (nlgs::BodySweeper::supports(d, k) &&  // (else layout() says why not)
         records_would_fit(static_cast<double>(nlgs::BodySweeper::largest_record_size(d, k)))) {
       records_fit_ = true;
-      records_packed_ = false;
+      pack_due_ = pack;
       return;
     }
     lay_out_records();
-    records_packed_ = records_fit_ && pack;
-    if (records_packed_) body_sweeper_.pack(P, r);
+    pack_due_ = records_fit_ && pack;
+  }
+  /// NLGS's records packed now (they were due: records()), Δv from x.
+  void pack_records(const Eigen::VectorXd& x) {
+    lay_out_records();
+    body_sweeper_.pack(*P_, x);
+    records_packed_ = true;
+  }
+  /// NLGS's sweep cost (costs_.sweep), through the body records: their layout, once per solve
+  /// and only when NLGS may run or be weighed (a solve that its remembered APGD finishes
+  /// never needs it: the layout's per-body isotropy check was 2.4·10³ instructions of such a
+  /// solve's 3.7·10⁴ on cannonball_3d). Through W's rows of() has it already.
+  void sweep_cost() {
+    if (sweep_costed_ || !bodies_) return;
+    sweep_costed_ = true;
+    lay_out_records();
+    const double record = static_cast<double>(body_sweeper_.record_size());
+    // memory-bound beyond the caches; records with M⁻¹Hᵀ blocks count more (work.hpp)
+    costs_.sweep = WorkCosts::body_sweep(*P_, record, body_sweeper_.dense_inverse_mass());
+  }
+  /// What NLGS needs before its first sweep of a solve: its cost, its order, W's rows.
+  void prepare_nlgs() {
+    if (nlgs_ready_) return;
+    nlgs_ready_ = true;
+    sweep_cost();
+    if (!bodies_) sweeper_.prepare(*P_);
+    nlgs::fixed_last_order(*P_, order_);
   }
   /// NLGS's record layout for this solve (once) and whether its records fit.
   void lay_out_records() {
@@ -690,7 +726,7 @@ class Auto : public Solver {
   /// Without NLGS's records APGD measures it (it packs its product for its first slice
   /// anyway; that slice then continues from it): one product instead of two.
   void start_error(Eigen::VectorXd& r, Eigen::VectorXd& u) {
-    if (bodies_ && !records_packed_) {
+    if (bodies_ && !records_packed_ && !pack_due_) {
       apgd::Options o;
       o.tolerance = tol_;
       o.max_iterations = 0;  // the start only
@@ -839,6 +875,7 @@ class Auto : public Solver {
   /// rate (ln of the error per unit of work; 0 when unknown); `reached`: its lowest error.
   double run_nlgs(Eigen::VectorXd& x, long max_sweeps, double units, bool first, double* reached) {
     const LocalProblem& P = *P_;
+    prepare_nlgs();
     if (bodies_ && !records_packed_) {  // packed when NLGS first runs (records beyond the caches)
       body_sweeper_.pack(P, x);
       records_packed_ = true;
@@ -1214,7 +1251,10 @@ class Auto : public Solver {
   const LocalProblem* P_ = nullptr;
   double nc_ = 0;
   bool bodies_ = false;
-  bool records_packed_ = false;  ///< NLGS's body records are packed for this solve (records())
+  bool records_packed_ = false;  ///< NLGS's body records are packed for this solve (pack_records(), run_nlgs())
+  bool pack_due_ = false;        ///< records() would have them packed: velocities() packs them at its first call
+  bool sweep_costed_ = false;    ///< costs_.sweep is NLGS's through the records (sweep_cost())
+  bool nlgs_ready_ = false;      ///< prepare_nlgs() was done for this solve
   long apgd_check_every_ = 1;    ///< APGD's steps between two errors
   std::vector<double> impulse_, dv_;  ///< scratch of products through the factor
   WorkCosts costs_;
@@ -1242,6 +1282,24 @@ class Auto : public Solver {
     double t, err;
   };
   std::vector<Check> hist_;
+  /// The solver set's fields of the saved state by their index in the set, found by name
+  /// once and checked by name at each use (a set at the address of a destroyed one may
+  /// hold other fields: no pointer is kept).
+  static constexpr const char* state_names[6] = {"solves", "member_cost", "member_iteration", "member_next_try", "member_try_interval", "at_rest"};
+  mutable std::array<std::size_t, 6> state_index_{};
+  /// The six fields' data, in state_names' order.
+  template <class Set, class Data>
+  void state_data(Set& set, std::array<Data*, 6>& data) const {
+    auto& fields = set.fields();
+    for (std::size_t i = 0; i < 6; ++i) {
+      std::size_t& at = state_index_[i];
+      if (at >= fields.size() || fields[at].name() != state_names[i]) {
+        const Field& f = set.field(state_names[i]);  // (throws when the set lacks it, as the lookups by name did)
+        for (at = 0; &fields[at] != &f;) ++at;
+      }
+      data[i] = fields[at].data();
+    }
+  }
   // Kept over the solves of a run.
   long solve_index_ = 0;
   std::array<Memory, member_count> memory_;
