@@ -184,6 +184,7 @@ class Auto : public Solver {
     const int d = P.dim;
     sweep_costed_ = false;  // NLGS's preparations, each when first needed in this solve (sweep_cost())
     nlgs_ready_ = false;
+    rest_checked_ = false;
     const Eigen::Index nc = P.contacts(), n = d * nc;
     SolverReport rep;
     if (r.size() != n || !r.allFinite()) r = Eigen::VectorXd::Zero(n);
@@ -217,6 +218,7 @@ class Auto : public Solver {
       // warm start's check (rest_probe(), through APGD's product), packs NLGS's records only
       // if NLGS runs (run_nlgs()).
       records(P, !at_rest_ && !starts_with_another_member(nc <= direct_max_contacts_));  // once per solve
+      if (at_rest_ && records_fit_ && rest_check(r, u, rep)) return rep;  // still at rest: the whole solve
     } else {
       velocities(r, u);
       start_err = natural_map_error(P, r, u);
@@ -576,9 +578,41 @@ class Auto : public Solver {
   bool rest_probe(Eigen::VectorXd& u) {
     if (!(at_rest_ && bodies_ && records_fit_)) return false;
     const double w0 = work_;
-    start_error(start_, u);
+    if (rest_checked_) {  // rest_check() made it: its outcome, as start_error() keeps it
+      current_ = apgd_member;
+      ++apgd_slices_;
+      work_ += rest_work_;
+      keep(start_x_, rest_err_, &u);
+    } else {
+      start_error(start_, u);
+    }
     if (trace_) std::fprintf(stderr, "auto: rest check %.3g work, warm start at %.2e\n", work_ - w0, best_err_);
     return best_err_ <= tol_;
+  }
+  /// rest_probe()'s check made before the rest of the set-up (a warm start that is not
+  /// r = 0): a step still at rest is then the whole solve, without the members' states, the
+  /// copies of the start and the memory's bookkeeping, which learn() would leave as they
+  /// are (on block_on_incline_2d, every solve but two: ~880 instructions of `auto`'s own
+  /// around APGD's check, which took 2.8·10³). True when it is the answer: r, u and `rep`
+  /// are the solve's; else rest_probe() takes its outcome (the same numbers as before).
+  bool rest_check(Eigen::VectorXd& r, Eigen::VectorXd& u, SolverReport& rep) {
+    rest_work_ = 0;
+    Eigen::VectorXd& x = start_x_;
+    x = r;
+    const SolverReport s = apgd::solve(*P_, start_options(&rest_work_), x, u);
+    rest_err_ = s.error;
+    rest_checked_ = true;
+    if (!(s.error <= tol_ && x.allFinite())) return false;
+    ++solve_index_;
+    r = x;
+    rep.error = s.error;
+    rep.converged = true;
+    rep.work = rest_work_;
+    if (trace_) {
+      std::fprintf(stderr, "auto: rest check %.3g work, warm start at %.2e\n", rest_work_, s.error);
+      trace_solve({}, rep);
+    }
+    return true;
   }
 
   /// Whether a slice of `who` from the best iterate goes on with its own run from the warm
@@ -727,17 +761,10 @@ class Auto : public Solver {
   /// anyway; that slice then continues from it): one product instead of two.
   void start_error(Eigen::VectorXd& r, Eigen::VectorXd& u) {
     if (bodies_ && !records_packed_ && !pack_due_) {
-      apgd::Options o;
-      o.tolerance = tol_;
-      o.max_iterations = 0;  // the start only
-      o.work = &work_;
-      o.state = &apgd_state_;
-      o.recompute_error = false;
-      o.scaling = apgd_scaling();
       Eigen::VectorXd& x = start_x_;  // kept over the solves: no allocation at each step
       x = r;
       current_ = apgd_member;
-      const SolverReport s = apgd::solve(*P_, o, x, u);
+      const SolverReport s = apgd::solve(*P_, start_options(&work_), x, u);
       ++apgd_slices_;
       keep(x, s.error, &u);  // its u = W x + q: the answer's when x is (finish())
       return;
@@ -745,6 +772,18 @@ class Auto : public Solver {
     velocities(r, u);
     keep(r, natural_map_error(*P_, r, u));
     work_ += costs_.product + costs_.error;
+  }
+  /// APGD's options for the start's error only (its products packed and kept in apgd_state_
+  /// for a slice of APGD that follows), the work counted into *work.
+  apgd::Options start_options(double* work) {
+    apgd::Options o;
+    o.tolerance = tol_;
+    o.max_iterations = 0;  // the start only
+    o.work = work;
+    o.state = &apgd_state_;
+    o.recompute_error = false;
+    o.scaling = apgd_scaling();
+    return o;
   }
   /// x becomes the best iterate when its error e is the lowest so far. `u`: its W x + q as
   /// the member computed it (the same product finish() would take: it is then not
@@ -1255,6 +1294,8 @@ class Auto : public Solver {
   bool pack_due_ = false;        ///< records() would have them packed: velocities() packs them at its first call
   bool sweep_costed_ = false;    ///< costs_.sweep is NLGS's through the records (sweep_cost())
   bool nlgs_ready_ = false;      ///< prepare_nlgs() was done for this solve
+  bool rest_checked_ = false;    ///< rest_check() ran in this solve: its error rest_err_, its work rest_work_
+  double rest_err_ = inf, rest_work_ = 0;
   long apgd_check_every_ = 1;    ///< APGD's steps between two errors
   std::vector<double> impulse_, dv_;  ///< scratch of products through the factor
   WorkCosts costs_;
