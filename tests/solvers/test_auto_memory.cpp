@@ -278,3 +278,63 @@ TEST(AutoMemory, AWinnerThatFinishedFromAnotherMembersIterateIsLearnt) {
   EXPECT_LT(cost[1], rep.work / 8) << "at its own work, below the solve's";
   EXPECT_TRUE(cost[0] == 0 || cost[0] > cost[1]) << "and is the incumbent";
 }
+
+TEST(AutoMemory, AStepStillAtRestCountsTheSolveAndLeavesTheMemoryAsItWas) {
+  // After a step at rest, a warm start that meets the tolerance ends the solve at its check,
+  // before the rest of the set-up (rest_check()): the solve is counted, the memory and the
+  // rest flag stay as they were, and the answer is the (projected) warm start with u = W r + q.
+  // A warm start above the tolerance goes on from that check to the tolerance.
+  const moreau::LocalProblem p = factored(2, 8, 16, 11u);
+  Eigen::VectorXd answer, u;
+  ASSERT_TRUE(make("auto", {{"tolerance", 1e-12}, {"remember", false}})->solve(p, answer, u).converged);
+  const nlohmann::json params = {{"tolerance", 1e-3}, {"remember", true}, {"direct_max_contacts", 0}};
+  auto a = make("auto", params);
+  remembered_apgd(*a, 1e3, true);
+  const std::vector<double> before = values(saved_state(*a));
+  Eigen::VectorXd r = answer, v;
+  const moreau::SolverReport rep = a->solve(p, r, v);
+  ASSERT_TRUE(rep.converged);
+  EXPECT_EQ(rep.iterations, 0);
+  EXPECT_GT(rep.work, 0.0) << "the check's product and error";
+  moreau::EntitySet after = saved_state(*a);
+  EXPECT_EQ(after.field("solves").data()[0], 11.0) << "the solve is counted";
+  after.field("solves").data()[0] = 10;
+  EXPECT_EQ(values(after), before) << "nothing else changed";
+  Eigen::VectorXd w;
+  std::vector<double> impulse, dv;
+  moreau::multiply_w(p.dim, p.factor, r, w, impulse, dv);
+  EXPECT_LT((v - (w + p.q)).norm(), 1e-12 * (1 + p.q.norm())) << "its u = W r + q";
+
+  auto b = make("auto", params);
+  remembered_apgd(*b, 1e3, true);
+  Eigen::VectorXd far = 0.5 * answer;
+  const moreau::SolverReport moved = b->solve(p, far, v);
+  ASSERT_TRUE(moved.converged);
+  EXPECT_GT(moved.iterations, 0) << "the step moved: the members went on";
+  EXPECT_EQ(saved_state(*b).field("solves").data()[0], 11.0);
+}
+
+TEST(AutoMemory, TheStateIsWrittenAndReadByFieldNameWhateverTheSetsLayout) {
+  // save_state() and load_state() keep each field's index in the set and check its name at
+  // every use: a set whose fields sit elsewhere (another field first, reversed order) gets
+  // the same values by name, and a later save into the usual layout is right again.
+  const moreau::LocalProblem p = factored(2, 8, 16, 11u);
+  auto a = make("auto", {{"tolerance", 1e-6}, {"remember", true}, {"direct_max_contacts", 0}});
+  Eigen::VectorXd r = Eigen::VectorXd::Zero(p.q.size()), u;
+  for (int k = 0; k < 3; ++k) ASSERT_TRUE(a->solve(p, r, u).converged);
+  const moreau::EntitySet usual = saved_state(*a);
+  moreau::EntitySet other(moreau::sets::solver, 3);
+  other.declare(moreau::field_spec(moreau::sets::solver, "something_else", 2, 2, 1, "1", moreau::FieldOutput::frame, true, "", moreau::FileType::real));
+  std::vector<moreau::FieldSpec> specs = a->state_fields(3);
+  for (auto it = specs.rbegin(); it != specs.rend(); ++it) other.declare(*it);
+  other.add_rows(1);
+  a->save_state(other);
+  for (const moreau::FieldSpec& f : specs)
+    for (int i = 0; i < usual.field(f.name).components(); ++i)
+      EXPECT_EQ(other.field(f.name).data()[i], usual.field(f.name).data()[i]) << f.name << " " << i;
+  EXPECT_EQ(other.field("something_else").data()[0], 0.0) << "untouched";
+  auto b = make("auto", {{"tolerance", 1e-6}, {"remember", true}, {"direct_max_contacts", 0}});
+  b->load_state(other);
+  EXPECT_EQ(values(saved_state(*b)), values(usual)) << "read back by name";
+  EXPECT_EQ(values(saved_state(*a)), values(usual)) << "the usual layout again";
+}
