@@ -146,7 +146,14 @@ struct WorkCosts {
   /// sooner). Only in a time step (the time-stepper's LocalProblem::error_scale set):
   /// problems given with W outside one (FCLib, the guarantee's corpus) and `nlgs` alone
   /// count as before.
-  static constexpr double w_rows_step = 2.0;
+  /// 3 since branch i15-tiny: at 2 NLGS's slices in `auto`'s run of
+  /// elastic_block_hit_by_spheres_3d (300 steps at 1e-3, MOREAU_AUTO_TRACE) still took 0.81
+  /// CPU ns per counted unit against APGD's 0.35, a fifth of `auto`'s time there; as shadows of
+  /// an `apgd` run (the same problems, medians of 3 runs) `auto` / `apgd` went 1.35 → 1.24 at
+  /// 1e-3 (blocks_on_elastic_slab_3d 1.06 → 1.00), 1.27 → 1.26 at the scenes' own 1e-6
+  /// (the slab 0.209 → 0.198 ms a step for `auto`); 4 and 5 gained no more at 1e-3 and 4 cost
+  /// the slab 0.30 ms a step at 1e-6.
+  static constexpr double w_rows_step = 3.0;
   static WorkCosts with_w_in_step(const LocalProblem& P) {
     WorkCosts c = of(P, false);
     if (P.error_scale > 0 && P.dim == 3) c.sweep *= w_rows_step;
