@@ -41,9 +41,9 @@
 //    member has used `max_iterations` of its own (Newton at most `newton_max_iterations`),
 //    or (in a time step) had three slices in a row that gained less than 1 %. For a problem
 //    given with W, a floor under the slices (floor.hpp) bounds auto's work by K times the
-//    least member's (K = 5 for NLGS and APGD, 8 for Newton and ADMM, 4 without a
-//    factorisation; + one of its iterations and one slice) and gives up no member's own run
-//    before its cap, so auto reaches whatever a member reaches alone.
+//    least member's (K = 4.5 for NLGS and APGD, 8 for Newton and ADMM, 4 without a
+//    factorisation; + one of its iterations, one slice and rule 2b's Newton steps) and gives
+//    up no member's own run before its cap, so auto reaches whatever a member reaches alone.
 // docs/solvers.md states the rule and the guarantee measured on the corpus.
 #include <time.h>
 
@@ -1272,7 +1272,7 @@ class Auto : public Solver {
   int winner_ = -1;             ///< the member whose run reached the tolerance (−1: none)
   int challenger_ = -1;         ///< the member tried first on the incumbent's budget in this solve (−1: none)
   long nlgs_run_sweeps_ = 0;    ///< sweeps of NLGS's own run in this solve (its checks' schedule)
-  std::array<double, 2> floor_k_{5, 8};  ///< the floor's K (floor.hpp): NLGS's and APGD's, Newton's and ADMM's
+  std::array<double, 2> floor_k_{4.5, 8};  ///< the floor's K (floor.hpp): NLGS's and APGD's, Newton's and ADMM's
   double start_err_ = inf;      ///< the start's error (∞: not evaluated, r = 0)
   bool newton_led_ = false;     ///< Newton's own run goes on step by step (newton_first)
   double newton_step_ = 0;      ///< the work of a Newton step measured in this solve (0: none yet)
