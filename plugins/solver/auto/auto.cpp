@@ -408,8 +408,11 @@ class Auto : public Solver {
   /// 59 → 65 (1e-8), where one member dominates 15 → 20 of 57 at 1e-8, the worst unchanged
   /// (3.77 / 4.89; 2×, 3×: no change, 4×, 6×: the bonded beam at 1e-4 1.31 → 4.6; 16×: 84
   /// and 66). The bound's first slice is then at most 8·K_j·s_j (docs/solvers.md, 2a).
+  /// The cap stays that of K = 5 and 8 (40 APGD steps, 64 ADMM steps) with the K of 4.5
+  /// (floor.hpp): 36 APGD steps cut the stage before NLGS finished the bonded beam at 1e-4
+  /// (1.19 → 3.04× NLGS's work; corpus within 2× 118 → 119 at 1e-4 with 40).
   double first_stage_cap(bool direct) const {
-    double s = floor_k_[0] * iteration_work(apgd_member, 0);
+    double s = (direct ? 5.0 : floor_k_[0]) * iteration_work(apgd_member, 0);
     if (direct) s = std::min(s, floor_k_[1] * iteration_work(admm_member, 0));  // (Newton's probe is 4 of them)
     return 8 * s;
   }
