@@ -410,7 +410,7 @@ class Auto : public Solver {
   /// and 66). The bound's first slice is then at most 8·K_j·s_j (docs/solvers.md, 2a).
   /// The cap stays that of K = 5 and 8 (40 APGD steps, 64 ADMM steps) with the K of 4.5
   /// (floor.hpp): 36 APGD steps cut the stage before NLGS finished the bonded beam at 1e-4
-  /// (1.19 → 3.04× NLGS's work; corpus within 2× 118 → 119 at 1e-4 with 40).
+  /// (1.19 → 3.04× NLGS's work; at 1e-4 the corpus within 1.5× / 2×: 105 / 118 → 107 / 122).
   double first_stage_cap(bool direct) const {
     double s = (direct ? 5.0 : floor_k_[0]) * iteration_work(apgd_member, 0);
     if (direct) s = std::min(s, floor_k_[1] * iteration_work(admm_member, 0));  // (Newton's probe is 4 of them)
