@@ -1,6 +1,7 @@
 #include "shadow_solvers.hpp"
 
 #include <cstdio>
+#include <cstdlib>
 #include <filesystem>
 #include <fstream>
 #include <moreau/error.hpp>
@@ -37,7 +38,14 @@ SolverReport ShadowSolvers::timed(Solver& s, const LocalProblem& P, Eigen::Vecto
   // compared with each other.
   const auto t0 = StageClock::thread_cpu();
   const SolverReport report = s.solve(P, r, u);
-  t.add(report, std::chrono::duration<double>(StageClock::thread_cpu() - t0).count());
+  const double sec = std::chrono::duration<double>(StageClock::thread_cpu() - t0).count();
+  t.add(report, sec);
+  // MOREAU_SHADOW_TRACE: one line per solve and solver on stderr, to compare the solvers
+  // step by step (scripts/auto_trace_summary.py; docs/solvers.md "Comparing solvers on one run").
+  static const bool trace = std::getenv("MOREAU_SHADOW_TRACE") != nullptr;
+  if (trace)
+    std::fprintf(stderr, "shadow: %s solve %ld cpu %.6e it %ld err %.3e conv %d work %.6e\n", t.label.c_str(), t.solves, sec,
+                 static_cast<long>(report.iterations), report.error, report.converged ? 1 : 0, report.work);
   return report;
 }
 
