@@ -42,11 +42,16 @@ struct WorkCosts {
   }
 
   /// One NLGS sweep through the body records (plugins/solver/nlgs/nlgs_body_sweep.hpp) of
-  /// `record` doubles per contact. Records beyond the caches: a sweep visits contacts in
-  /// order and the bodies' Δv at random, and becomes memory-bound, where APGD's products
-  /// stream. Measured on 10⁴ touching spheres (30894 contacts, 12 MB of records): 4.3 ns per
-  /// counted unit for the sweeps against 1.2 for APGD; at a few hundred contacts both follow
-  /// the model. `nlgs` alone and `auto`'s NLGS count the same. `dense`: records with M⁻¹Hᵀ
+  /// `record` doubles per contact, as many per contact at every size. Records beyond the
+  /// caches counted up to 4 times more until branch i15-costfit (measured then on 10⁴
+  /// touching spheres: 4.3 ns per counted unit against APGD's 1.2). Since the records are laid
+  /// out with the bodies numbered by first use, a sweep's time per contact no longer grows
+  /// with their size: as a shadow of `apgd` (touching spheres, 10 steps at 1e-4, CPU,
+  /// bench_spheres.py's scene) NLGS took 70, 70, 79 ns per contact and sweep at 10³, 3·10³,
+  /// 10⁴ spheres (3200, 9424, 30894 contacts; 1.4, 4.0, 13 MB of records; the L2 holds 1 MB
+  /// a core), and with the factor 0.66, 0.29, 0.21 ns per counted unit against APGD's
+  /// 0.83–0.89: over-counted 3–4 times (without it 0.67, 0.68, 0.78).
+  /// `nlgs` alone and `auto`'s NLGS count the same. `dense`: records with M⁻¹Hᵀ
   /// blocks (3D bodies whose inverse mass is not one scalar per block: boxes, clusters,
   /// convex grains; BodySweeper::dense_inverse_mass) cost more than their size says: measured
   /// in time steps (MOREAU_AUTO_TRACE, 150 steps at 1e-3), ns per counted unit of NLGS over
@@ -93,10 +98,11 @@ struct WorkCosts {
       for (std::size_t a = 2; a + 1 < b.size(); a += 2)
         if (b[a] == b[a - 2] && b[a + 1] == b[a - 1]) counted += 0.8;
     }
-    const double sweep = (dense && !dense_3d ? 2.5 : 3.0) * (counted * (0.3 * record + local) + 200);
-    const double bytes = record_bytes(P, record);
-    return bytes > cache_bytes ? sweep * std::min(4.0, 1 + 1.5 * std::log2(bytes / cache_bytes)) : sweep;
+    return (dense && !dense_3d ? 2.5 : 3.0) * (counted * (0.3 * record + local) + 200);
   }
+  /// The records' size, and the cache they are compared with where `auto` decides whether to
+  /// pack them before NLGS runs (auto.cpp records_would_fit(): packing 10⁴ spheres' records
+  /// cost 3 ms a step, for nothing when APGD finishes).
   static double record_bytes(const LocalProblem& P, double record) { return 8 * record * static_cast<double>(P.contacts()); }
   static constexpr double cache_bytes = 2e6;
 

@@ -15,6 +15,7 @@
 #include "rigid_frames.hpp"
 #include "scaled_factor.hpp"
 #include "sim.hpp"
+#include "../work.hpp"  // plugins/solver (through the nlgs include directory)
 
 namespace {
 
@@ -561,3 +562,26 @@ TEST(ApgdFactored, DiagonalInverseMassesArePackedAsTheGeneralOnes) {
 }
 
 }  // namespace
+
+TEST(NlgsBodies, ASweepCountsTheSameWorkPerContactAtEverySize) {
+  // A sweep through the records costs as much per contact at 10⁴ spheres as at 10³ (shadows
+  // of `apgd` on bench_spheres.py's touching spheres, 10 steps at 1e-4: 70, 70, 79 CPU ns per
+  // contact and sweep at 3200, 9424, 30894 contacts, 1.4 to 13 MB of records), so its count
+  // is linear in the contacts. Before, records beyond 2 MB counted up to 4 times more per
+  // contact, and NLGS took 0.21–0.29 ns per counted unit there against 0.67 below and
+  // APGD's 0.87 (docs/solvers.md "CPU time per counted unit by scene").
+  auto spheres = [](Eigen::Index nc) {
+    moreau::LocalProblem P;
+    P.dim = 3;
+    P.mu = Eigen::VectorXd::Constant(nc, 0.3);
+    return P;
+  };
+  const moreau::LocalProblem small = spheres(3200), large = spheres(30894);
+  for (const bool dense : {false, true}) {
+    const double record = dense ? 85 : 53;  // 3D records: M⁻¹Hᵀ blocks, or scalar inverse masses
+    ASSERT_GT(moreau::WorkCosts::record_bytes(large, record), 4 * moreau::WorkCosts::cache_bytes);  // beyond the caches
+    const double per_small = moreau::WorkCosts::body_sweep(small, record, dense) / 3200;
+    const double per_large = moreau::WorkCosts::body_sweep(large, record, dense) / 30894;
+    EXPECT_NEAR(per_large / per_small, 1.0, 0.01) << "dense " << dense;
+  }
+}
