@@ -28,7 +28,7 @@ HERE = os.path.dirname(os.path.abspath(__file__))
 sys.path.insert(0, HERE)
 import bench_scenes  # noqa: E402  (the scene list, solver blocks)
 
-SLICE = re.compile(r"^auto: (first )?(\w+)(?:, budget \S+, took| ) ?([0-9.e+-]+) work \(([0-9.e+-]+) ns\).*? it (\d+)", re.M)
+SLICE = re.compile(r"^auto: (first )?(\w+)(?: \[\w+\])?(?:, budget \S+, took| ) ?([0-9.e+-]+) work \(([0-9.e+-]+) ns\).*? it (\d+)", re.M)
 CONTACTS = re.compile(r"^auto: solve \d+, contacts (\d+)", re.M)
 
 
