@@ -253,6 +253,7 @@ class Products {
       }
     }
     cost = W.scaled() ? WorkCosts::packed(P) : WorkCosts::of(P, W.through_factor());
+    denominator = error_denominator(P);
   }
   bool of(const LocalProblem& P) const { return problem == &P && s.size() == (split() ? 3 : 1) * P.contacts(); }
   bool of(const LocalProblem& P, Scaling sc) const { return scaling == sc && of(P); }
@@ -263,6 +264,7 @@ class Products {
   Scaling scaling = Scaling::contact;
   Eigen::VectorXd s;  ///< the scaling D per contact (projected_step: 1 or 3 values a contact)
   WorkCosts cost;
+  double denominator = 1;  ///< error_denominator(P) (a pass over q: not repeated at each slice)
   /// solve()'s work vectors beside the state's x, y, W x, W y (kept for their memory).
   Eigen::VectorXd xn, Wxn, g, dl, Wd, best;
   std::vector<unsigned char> inside, inside_next;  ///< per contact: x, x⁺ strictly inside the cone
@@ -315,7 +317,7 @@ SolverReport solve(const LocalProblem& P, const Options& o, Eigen::VectorXd& r, 
   double L = 1, theta = 1;
   WorkMeter meter(o.max_work, o.work);
   double best_err = -1;
-  if (resume) {
+  if (resume) {  // x, W x and y, W y as the last call left them: nothing to compute
     const State& st = *o.state;
     L = st.L, theta = st.theta;
     best_err = st.err;
@@ -325,17 +327,26 @@ SolverReport solve(const LocalProblem& P, const Options& o, Eigen::VectorXd& r, 
     y = x;
     Wy = Wx;
   }
-  if (!(best_err >= 0)) {
+  if (!(best_err >= 0)) {  // a start, or a resumed run whose last step was not measured
     u = Wx + P.q;
     best_err = natural_map_error(P, x, u);
     meter.add(cost.error);
   }
+  // The start's product and copies; packing the factor (H L per contact side) costs about a
+  // product.
+  const double packing = W.scaled() && !packed ? cost.product : 0;
+  if (resume) {
+    if (packing > 0) meter.add(packing);
+  } else {
+    meter.add(cost.product + packing + 2 * cost.vector);
+  }
+  // The error at x: kept in the state for a resumed call (the same sum as natural_map_error's,
+  // in the same order: a resumed call starts from the number it would recompute).
+  double x_err = best_err;
   // The best iterate is x itself until an iterate is worse than the one before: copied only
   // then (not at every step).
   bool best_is_x = true;
-  // The start's product; packing the factor (H L per contact side) costs about a product.
-  meter.add((resume ? 0 : cost.product) + (W.scaled() && !packed ? cost.product : 0) + 2 * cost.vector);
-  const double denominator = error_denominator(P);
+  const double denominator = kept->denominator;
   std::vector<unsigned char>&inside = kept->inside, &inside_next = kept->inside_next;
   // A resumed run keeps the status its last step gave x (the products, which hold it, are
   // the state's); otherwise it is taken from x.
@@ -378,6 +389,7 @@ SolverReport solve(const LocalProblem& P, const Options& o, Eigen::VectorXd& r, 
     inside.swap(inside_next);
     L *= o.shrink;
     if (!check) {  // x⁺ not measured: not a candidate for the best iterate
+      x_err = -1;
       if (best_is_x) {
         best = xn;
         best_is_x = false;
@@ -393,6 +405,7 @@ SolverReport solve(const LocalProblem& P, const Options& o, Eigen::VectorXd& r, 
       inside.swap(inside_next);
       break;
     }
+    x_err = e;
     if (e < best_err) {
       best_err = e;
       best_is_x = true;
@@ -404,7 +417,9 @@ SolverReport solve(const LocalProblem& P, const Options& o, Eigen::VectorXd& r, 
     if (meter.exhausted()) break;
   }
   r = best_is_x ? x : best;
-  if (o.recompute_error || !best_is_x) {
+  if (!o.recompute_error && !o.velocities) {
+    rep.error = best_err;  // as the iteration measured it; u is not computed
+  } else if (o.recompute_error || !best_is_x) {
     W.apply(r, u);
     u += P.q;
     meter.add(cost.product);
@@ -416,7 +431,6 @@ SolverReport solve(const LocalProblem& P, const Options& o, Eigen::VectorXd& r, 
   rep.converged = rep.error <= o.tolerance;
   if (o.state) {
     State& st = *o.state;
-    const double x_err = best_is_x ? best_err : -1;
     st.x.swap(x), st.y.swap(y), st.Wx.swap(Wx), st.Wy.swap(Wy), st.L = L, st.theta = theta, st.err = x_err;
     st.products = std::move(kept);
   }

@@ -35,7 +35,9 @@ struct State {
   State& operator=(State&&) noexcept;
   Eigen::VectorXd x, y, Wx, Wy;
   double L = 1, theta = 1;
-  double err = -1;  ///< the error at x (−1: not known)
+  /// The error at x, as its step measured it (−1: not known, an unmeasured step): a resumed
+  /// call starts from it instead of recomputing it.
+  double err = -1;
   /// The last call's packed products by W (the factor folded with the inverse masses, the
   /// scaling D), kept for a later call on the same problem (Options::same_problem).
   std::unique_ptr<Products> products;
@@ -73,6 +75,12 @@ struct Options {
   /// the last iterate, the one the iteration measured (u from the updated W x, equal to
   /// rounding): for a caller that recomputes its answer's error itself (`auto`).
   bool recompute_error = true;
+  /// u = W r + q is wanted on exit. False (with recompute_error false): u is not computed and
+  /// the error returned is the one the iteration measured at r, even when r is an earlier
+  /// iterate than the last (else a product by W for u): for a caller that uses only r and
+  /// the error (`auto`'s slices outside a time step, which would pay that product at the end
+  /// of every slice whose last step was not its best).
+  bool velocities = true;
 };
 
 SolverReport solve(const LocalProblem& P, const Options& o, Eigen::VectorXd& r, Eigen::VectorXd& u);

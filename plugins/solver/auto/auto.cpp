@@ -748,6 +748,9 @@ class Auto : public Solver {
     a.check_every = apgd_check_every_;
     a.scaling = apgd_scaling();
     a.recompute_error = false;
+    // Outside a time step a slice's u is not used (run_member() keeps it in a step only): a
+    // slice ending on an earlier best iterate then pays no product for it.
+    a.velocities = in_step();
     return a;
   }
   /// A time step whose NLGS records exceed 4× the cache (about 2·10⁴ contacts of spheres):
