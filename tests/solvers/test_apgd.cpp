@@ -5,6 +5,9 @@
 #include "factored_problem.hpp"
 #include "solver_cases.hpp"
 
+#include <algorithm>
+#include <limits>
+
 using namespace solver_cases;
 
 TEST(Apgd, OpenContactHasNoImpulse) { open_contact("apgd"); }
@@ -90,7 +93,78 @@ void expect_resumed_run_is_one_run(const moreau::LocalProblem& P, moreau::apgd::
     EXPECT_EQ(two.theta, one.theta) << w;
   }
 }
+
+/// N steps in one call against slices of 1–4 steps (`auto`'s floor cut the dense disks'
+/// warm run into ~3600 slices of ~3 steps), as `auto` calls them outside a time step: error
+/// from the iteration, no u (recompute_error = velocities = false). Resuming computes
+/// nothing: the slices' counted work is the one call's (its start counted once in both),
+/// and their best error is its. A slice ending on an earlier best iterate than its last is
+/// the case that cost a product and an error evaluation before (the error at x is now kept
+/// in the state): the problems here have such slices. With u wanted (a time step) each such
+/// slice pays the product for it, counted. Returns the number of such slices.
+int expect_sliced_run_counts_one_runs_work(const moreau::LocalProblem& P, moreau::apgd::Scaling scaling, const std::string& what) {
+  constexpr long N = 60;
+  moreau::apgd::Options o;
+  o.tolerance = 1e-300;
+  o.scaling = scaling;
+  o.recompute_error = o.velocities = false;
+  o.max_iterations = N;
+  moreau::apgd::State one;
+  o.state = &one;
+  double work1 = 0;
+  o.work = &work1;
+  Eigen::VectorXd r1 = Eigen::VectorXd::Zero(P.q.size()), u1;
+  const moreau::SolverReport rep1 = moreau::apgd::solve(P, o, r1, u1);
+  EXPECT_EQ(rep1.iterations, N) << what;
+  int earlier_best = 0;
+  for (bool velocities : {false, true}) {
+    moreau::apgd::State two;
+    o.state = &two;
+    o.velocities = velocities;
+    double work = 0, best = std::numeric_limits<double>::infinity();
+    o.work = &work;
+    Eigen::VectorXd r = Eigen::VectorXd::Zero(P.q.size()), u;
+    long done = 0;
+    earlier_best = 0;
+    for (int slice = 0; done < N; ++slice) {
+      o.max_iterations = std::min<long>(1 + slice % 4, N - done);
+      o.resume = o.same_problem = slice > 0;
+      const moreau::SolverReport rep = moreau::apgd::solve(P, o, r, u);
+      done += rep.iterations;
+      best = std::min(best, rep.error);
+      if ((r - two.x).norm() > 0) ++earlier_best;
+      r = two.x;  // as auto's own run: the next slice goes on from the state, r ignored
+    }
+    const std::string w = what + (velocities ? ", u wanted" : "");
+    EXPECT_EQ((two.x - one.x).norm(), 0.0) << w;
+    if (velocities)  // a slice ending on an earlier best recomputes its error with a fresh product: to rounding
+      EXPECT_NEAR(best, rep1.error, 1e-12) << w;
+    else
+      EXPECT_EQ(best, rep1.error) << w;
+    if (velocities && earlier_best > 0)
+      EXPECT_GT(work, work1 * (1 + 1e-12)) << w << ": " << earlier_best << " products for u not counted";
+    else
+      EXPECT_NEAR(work, work1, 1e-12 * work1) << w << " (" << earlier_best << " slices ended on an earlier best)";
+  }
+  return earlier_best;
+}
 }  // namespace
+
+TEST(Apgd, SlicedRunCountsTheUninterruptedRunsWork) {
+  for (auto scaling : {moreau::apgd::Scaling::contact, moreau::apgd::Scaling::normal_tangent}) {
+    const std::string sc = scaling == moreau::apgd::Scaling::contact ? "contact" : "normal_tangent";
+    int earlier_best = 0;
+    for (int d : {2, 3}) {
+      auto P = factored_problem(d, 10, 2, 16, 51u + static_cast<unsigned>(d));
+      earlier_best += expect_sliced_run_counts_one_runs_work(P, scaling, "with W, dim " + std::to_string(d) + ", " + sc);
+      P.W.resize(0, 0);  // through the factor (packed once)
+      earlier_best += expect_sliced_run_counts_one_runs_work(P, scaling, "through the factor, dim " + std::to_string(d) + ", " + sc);
+    }
+    const auto beam = moreau::fclib::read(std::string(MOREAU_SOURCE_DIR) + "/tests/data/apgd/bonded_beam_small_2d-step00000020.hdf5");
+    earlier_best += expect_sliced_run_counts_one_runs_work(beam.local, scaling, "czm beam, " + sc);
+    EXPECT_GT(earlier_best, 0) << sc << ": no slice ended on an earlier best iterate (the case tested)";
+  }
+}
 
 TEST(Apgd, ResumedRunIsTheUninterruptedRun) {
   for (auto scaling : {moreau::apgd::Scaling::contact, moreau::apgd::Scaling::normal_tangent}) {
