@@ -61,6 +61,7 @@
 
 #include "../work.hpp"
 #include "floor.hpp"
+#include "start_check.hpp"
 #include "admm_core.hpp"
 #include "apgd_core.hpp"
 #include "newton_core.hpp"
@@ -206,6 +207,8 @@ class Auto : public Solver {
     // q_n ≥ 0: u = q lies in the dual cone), checked without a product. `newton` and
     // `prox` check their start too.
     double start_err = inf;
+    start_known_ = true;
+    start_check_work_ = -1;  // (a product and an error when the start's error is known)
     if ((r.array() == 0).all()) {
       bool open = true;
       for (Eigen::Index a = 0; a < nc && open; ++a) open = P.q[d * a] >= 0;
@@ -220,9 +223,20 @@ class Auto : public Solver {
       // if NLGS runs (run_nlgs()).
       records(P, !at_rest_ && !starts_with_another_member(nc <= direct_max_contacts_));  // once per solve
       if (at_rest_ && records_fit_ && rest_check(r, u, rep)) return rep;  // still at rest: the whole solve
-    } else {
+    } else if (P.error_scale > 0) {  // a time step given with W (finite elements): as before
       velocities(r, u);
       start_err = natural_map_error(P, r, u);
+    } else {
+      // Given with W outside a time step (FCLib): the check stops at the first contacts whose
+      // error alone exceeds the tolerance (start_check.hpp); known_start_error() goes on.
+      start_known_ = false;
+      start_check_.reset(P);
+      start_check_work_ = start_check_.examine(P, r, tol_);
+      if (start_check_.complete(P)) {
+        start_known_ = true;
+        start_err = start_check_.error;
+        u = start_check_.u;
+      }
     }
     start_err_ = start_err;
     newton_led_ = false;
@@ -252,7 +266,7 @@ class Auto : public Solver {
     winner_ = -1;
     challenger_ = -1;
     total_ = 0;
-    work_ = std::isfinite(start_err) ? costs_.product + costs_.error : 0;  // the start's check
+    work_ = start_check_work_ >= 0 ? start_check_work_ : std::isfinite(start_err) ? costs_.product + costs_.error : 0;  // the start's check
     admm_slices_ = 0;
     apgd_slices_ = 0;
     newton_merits_.clear();
@@ -357,8 +371,12 @@ class Auto : public Solver {
       slice(m, first, 3 * memory_[first].cost * nc_, false);
       if (best_err_ <= tol_) return finish();
     } else if (!std::isfinite(best_err_)) {  // nlgs_sweeps = 0: the start's error, unless rule 0 had it
-      start_error(r, u);
+      if (start_known_)
+        start_error(r, u);
+      else
+        start_error_above(inf);
     }
+    if (!std::isfinite(best_err_) && !start_known_) start_error_above(inf);  // NLGS's first stage gave no finite error
     if (!std::isfinite(best_err_)) return finish();
     sweep_cost();  // the slices weigh NLGS's sweeps
 
@@ -510,15 +528,15 @@ class Auto : public Solver {
   /// pair that Newton wins starts at 2e-5–5e-4 and converges in 1–3 steps (masonry arch,
   /// step 5, 1e-8: 10.45 → 1.49× Newton's work); started later, by the probe rule's 4-step
   /// probe that waits for 4 steps' work, it paid for ADMM and APGD first.
-  bool newton_first(const std::array<MemberState, member_count>& m) const {
-    if (bodies_ || cold_ || !(start_err_ <= 1e-3)) return false;
+  bool newton_first(const std::array<MemberState, member_count>& m) {
+    if (bodies_ || cold_) return false;
     const MemberState& s = m[newton_start_member];
     if (s.slices > 0) return newton_led_ && !excluded(s, newton_start_member);
     if (!s.available) return false;
     double remaining = inf;
     for (int k = 0; k < member_count; ++k)
       if (m[k].slices > 0 && !excluded(m[k], k)) remaining = std::min(remaining, work_left(m[k], k));
-    return remaining > newton_step_estimate();
+    return remaining > newton_step_estimate() && !start_error_above(1e-3);  // (newton_led_ implies it)
   }
   /// A slice of NLGS's or APGD's own run (floor.hpp): from the warm start at first, then on
   /// from where its last slice stopped, as the member alone (NLGS: its iterate and its
@@ -811,6 +829,27 @@ class Auto : public Solver {
       best_ = x;
       best_by_ = current_;
     }
+  }
+  /// Whether the warm start's error exceeds `bound`, its check (rule 0, start_check.hpp)
+  /// going on from where it stopped only as far as that needs: for a problem given with W
+  /// outside a time step, where rule 0 stopped at the first contacts whose error exceeded
+  /// the tolerance (on the reduced corpus that check, a product and an error, half a sweep,
+  /// was the whole of auto's work above NLGS's on the pairs NLGS finishes in one sweep:
+  /// docs/solvers.md, rule 0). Once complete, the start is kept as an iterate when it is the
+  /// best (as rule 0 kept it). Rule 2b asks with 1e-3 (newton_first()).
+  bool start_error_above(double bound) {
+    if (start_known_) return start_err_ > bound;
+    work_ += start_check_.examine(*P_, start_, bound);
+    if (start_check_.complete(*P_)) {
+      start_known_ = true;
+      start_err_ = start_check_.error;
+      const int by = current_;
+      current_ = -1;
+      keep(start_, start_err_, &start_check_.u);
+      current_ = by;
+      if (trace_) std::fprintf(stderr, "auto: start error %.3e (completed when needed)\n", start_err_);
+    }
+    return start_check_.error > bound;
   }
   /// The counted work of rule 0 when it answers from r: the start's error, and its product
   /// unless r = 0 (u = q then).
@@ -1293,6 +1332,9 @@ class Auto : public Solver {
   long nlgs_run_sweeps_ = 0;    ///< sweeps of NLGS's own run in this solve (its checks' schedule)
   std::array<double, 2> floor_k_{4.5, 8};  ///< the floor's K (floor.hpp): NLGS's and APGD's, Newton's and ADMM's
   double start_err_ = inf;      ///< the start's error (∞: not evaluated, r = 0)
+  bool start_known_ = true;     ///< start_err_ evaluated, or r = 0 (else start_check_ goes on: start_error_above())
+  auto_start::StartCheck start_check_;  ///< rule 0's check of a warm start given with W (FCLib), where it stopped
+  double start_check_work_ = -1;        ///< its counted work in step 0 (−1: not used)
   bool newton_led_ = false;     ///< Newton's own run goes on step by step (newton_first)
   double newton_step_ = 0;      ///< the work of a Newton step measured in this solve (0: none yet)
   /// NLGS's or APGD's own run for the floor (floor.hpp), beside the slices of the rule.
