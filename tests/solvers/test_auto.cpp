@@ -43,19 +43,32 @@ TEST(Auto, SharedFclibProblems) {
   }
 }
 
-TEST(Auto, AWarmStartGivenWithWThatNlgsFinishesInOneSweepCostsWhatNlgsCosts) {
-  // Rule 0 (docs/solvers.md): a warm start given with W outside a time step is not checked
-  // before NLGS's first sweep (the check, a product and an error, cost 1.03–1.57× NLGS's work
-  // on the corpus pairs NLGS finishes in one sweep). The warm start: NLGS's answer perturbed;
-  // the tolerance: just above the error of NLGS's first sweep from it, below the start's.
-  const LocalProblem p = random_problem(3, 4, 8, 0.5, 10.0, 7u);
+TEST(Auto, TheCheckOfAWarmStartGivenWithWStopsAtTheContactsThatMissTheTolerance) {
+  // Rule 0 (docs/solvers.md): a warm start given with W outside a time step is checked
+  // contact by contact, and the check stops once the contacts examined exceed the tolerance
+  // (plugins/solver/auto/start_check.hpp): where NLGS then finishes in one sweep, auto costs
+  // NLGS's work and a fraction of the full check (a product and an error: before, all of it,
+  // 1.03–1.57× NLGS's work on such corpus pairs). The warm start: NLGS's answer, every
+  // contact perturbed.
+  // Contacts that do not couple (W's diagonal blocks: NLGS's exact local solves finish in
+  // one sweep, as on the corpus's loose disks and `default` scene).
+  LocalProblem p = random_problem(3, 10, 40, 0.5, 10.0, 7u);
+  Eigen::SparseMatrix<double, Eigen::RowMajor> blocks = p.W;
+  blocks.prune([](Eigen::Index i, Eigen::Index j, double) { return i / 3 == j / 3; });
+  p.W = blocks;
   Eigen::VectorXd start = solve("nlgs", p, 1e-12, 100000, {{"check_every", 1}});
-  for (Eigen::Index i = 0; i < start.size(); ++i) start[i] *= 1 + 0.02 * std::sin(1.0 + static_cast<double>(i));
+  for (Eigen::Index i = 0; i < start.size(); ++i) start[i] = start[i] * (1 + 0.02 * std::sin(1.0 + static_cast<double>(i))) + 1e-3;
   const double start_err = moreau::natural_map_error(p, start);
-  Eigen::VectorXd r1 = start, u1;
-  const SolverReport one = make("nlgs", {{"tolerance", 1e-300}, {"max_iterations", 1}})->solve(p, r1, u1);
-  const double tol = 1.01 * one.error;
-  ASSERT_GT(start_err, tol) << "the warm start must not already meet the tolerance";
+  // The full check's counted work: what auto counts for a start within the tolerance.
+  Eigen::VectorXd rs = start, us;
+  const SolverReport within = make("auto", {{"tolerance", 1.01 * start_err}})->solve(p, rs, us);
+  expect_honest(p, rs, us, within, 1.01 * start_err, "auto (warm start within the tolerance)");
+  ASSERT_TRUE(within.converged);
+  ASSERT_EQ(within.iterations, 0);
+  EXPECT_EQ(rs, start) << "a warm start within the tolerance is the answer";
+  const double check = within.work;
+  const double tol = 1e-10;
+  ASSERT_GT(start_err, 1e-4) << "the warm start must be far from the tolerance";
   Eigen::VectorXd rn = start, un;
   const SolverReport nlgs = make("nlgs", {{"tolerance", tol}})->solve(p, rn, un);
   ASSERT_TRUE(nlgs.converged);
@@ -65,11 +78,8 @@ TEST(Auto, AWarmStartGivenWithWThatNlgsFinishesInOneSweepCostsWhatNlgsCosts) {
   expect_honest(p, r, u, rep, tol, "auto (warm, one sweep)");
   EXPECT_TRUE(rep.converged);
   EXPECT_EQ(rep.iterations, 1);
-  EXPECT_LE(rep.work, nlgs.work) << "auto pays for a check of the warm start before NLGS's sweep";
-  // A warm start that already meets the tolerance: one sweep, converged, an answer within it.
-  Eigen::VectorXd rs = start, us;
-  const SolverReport within = make("auto", {{"tolerance", 1.01 * start_err}})->solve(p, rs, us);
-  expect_honest(p, rs, us, within, 1.01 * start_err, "auto (warm start within the tolerance)");
-  EXPECT_TRUE(within.converged);
-  EXPECT_LE(within.work, nlgs.work);
+  EXPECT_EQ(r, rn) << "NLGS's first sweep, as `nlgs` alone";
+  std::printf("warm start given with W, one NLGS sweep: nlgs %.1f, auto %.1f, the full check %.1f\n", nlgs.work, rep.work, check);
+  // Main c43c422: nlgs.work + check (the whole check before the sweep).
+  EXPECT_LT(rep.work, nlgs.work + 0.7 * check) << "check " << check << ", nlgs " << nlgs.work;
 }
