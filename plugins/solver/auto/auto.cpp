@@ -228,7 +228,7 @@ class Auto : public Solver {
       start_err = natural_map_error(P, r, u);
     } else {
       // Given with W outside a time step (FCLib): the check stops at the first contacts whose
-      // error alone exceeds the tolerance (start_check.hpp); known_start_error() goes on.
+      // error alone exceeds the tolerance (start_check.hpp); start_error_above() goes on.
       start_known_ = false;
       start_check_.reset(P);
       start_check_work_ = start_check_.examine(P, r, tol_);
