@@ -21,13 +21,22 @@ struct WorkCosts {
   double vector = 1;   ///< one pass over the dim·nc unknowns (axpy, projection)
   double sweep = 1;    ///< one NLGS sweep (local solves included), through W's rows or the body records
 
+  /// The per-call parts of a product and of an error evaluation; the rest of each scales
+  /// with what is read (w_rows_product(), error_contacts()), so a partial pass (auto's start
+  /// check, start_check.hpp) counts its share of them and these once.
+  static constexpr double product_call = 200, error_call = 100;
+  /// u = W x + q over `rows` of W's rows holding `entries` stored entries.
+  static double w_rows_product(double entries, double rows) { return 0.37 * entries + 0.9 * rows; }
+  /// The natural-map error's part for `contacts` contacts.
+  static double error_contacts(int d, double contacts) { return (d == 2 ? 6.5 : 8.5) * contacts; }
+
   static WorkCosts of(const LocalProblem& P, bool through_factor) {
     WorkCosts c;
     const double d = P.dim, nc = static_cast<double>(P.contacts()), n = d * nc;
     // A one-contact Coulomb solve: a few cases in 2D, a local Newton when sliding in 3D.
     const double local = d == 2 ? 8.0 : 60.0;
     c.vector = 1.0 * n + 50;
-    c.error = (d == 2 ? 6.5 : 8.5) * nc + 100;
+    c.error = error_contacts(P.dim, nc) + error_call;
     if (through_factor && P.factor.present()) {
       // Hᵀx and H Δv: 2 d k multiply-adds per contact side each way, k² per body.
       const double k = P.factor.k, nb = static_cast<double>(P.factor.inverse_mass.size()) / std::max(1.0, k * k);
@@ -35,7 +44,7 @@ struct WorkCosts {
       c.sweep = nc * (0.3 * 2 * 2 * d * k + local / 4) + 200;  // a record read, the two Δv written
     } else {
       const double nnz = static_cast<double>(P.W.nonZeros());
-      c.product = 0.37 * nnz + 0.9 * n + 200;
+      c.product = w_rows_product(nnz, n) + product_call;
       c.sweep = 0.73 * nnz + local * nc + 200;
     }
     return c;

@@ -52,13 +52,12 @@ struct StartCheck {
       ++done;
     }
     error = std::sqrt(sum) / scale;
-    const WorkCosts c = WorkCosts::of(P, false);
-    if (from == 0 && done == nc) return c.product + c.error;
-    // work.hpp: product 0.37·nnz + 0.9·n + 200, error (6.5 | 8.5)·nc + 100 (per call).
-    const double rows = static_cast<double>((done - from) * d), nnz = static_cast<double>(std::max<Eigen::Index>(1, P.W.nonZeros()));
-    const double n = static_cast<double>(d * nc), contacts = static_cast<double>(nc);
-    return 300 + (c.product - 200) * (0.37 * entries + 0.9 * rows) / (0.37 * nnz + 0.9 * n) +
-           (c.error - 100) * static_cast<double>(done - from) / contacts;
+    if (from == 0 && done == nc) {
+      const WorkCosts c = WorkCosts::of(P, false);
+      return c.product + c.error;
+    }
+    return WorkCosts::product_call + WorkCosts::error_call + WorkCosts::w_rows_product(entries, static_cast<double>((done - from) * d)) +
+           WorkCosts::error_contacts(d, static_cast<double>(done - from));
   }
 };
 
