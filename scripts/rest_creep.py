@@ -6,7 +6,7 @@ output every --every steps) and prints, per run, the largest displacement of any
 its position at step --from to each later frame (every fifth frame shown), the largest
 rotation over the same span, and the deepest overlap (most negative gap) of the last frame.
 A wall or a stack at rest should not move; what a solver leaves within its tolerance at
-every step can add up into a slow drift (docs/solvers.md, "A step at rest").
+every step can add up into a slow drift (docs/solvers-history.md, "A step at rest", in "`auto`: the rule with the measurements behind each part").
 
     python3 scripts/rest_creep.py configs/mortar_wall_2d.json --solvers auto apgd \
         --tolerance 1e-8 [--from 500] [--every 20] [--moreau build/bin/moreau]

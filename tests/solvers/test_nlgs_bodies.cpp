@@ -569,7 +569,7 @@ TEST(NlgsBodies, ASweepCountsTheSameWorkPerContactAtEverySize) {
   // contact and sweep at 3200, 9424, 30894 contacts, 1.4 to 13 MB of records), so its count
   // is linear in the contacts. Before, records beyond 2 MB counted up to 4 times more per
   // contact, and NLGS took 0.21–0.29 ns per counted unit there against 0.67 below and
-  // APGD's 0.87 (docs/solvers.md "CPU time per counted unit by scene").
+  // APGD's 0.87 (docs/solvers-history.md "CPU time per counted unit by scene").
   auto spheres = [](Eigen::Index nc) {
     moreau::LocalProblem P;
     P.dim = 3;
