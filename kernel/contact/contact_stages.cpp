@@ -352,7 +352,7 @@ void ContactStages::warm_start(StepContext& c) {
   const int d = st.dimension();
   EntitySet& set = st.set(sets::contacts);
   const std::size_t nc = contacts_.size();
-  const ContactFieldRefs& f = contact_fields(set);
+  const ContactFieldRefs& f = resolved(contact_fields_, set);
   {
     const double* kv = f.key->data(Depth::begin);
     previous_keys_.clear();
@@ -397,11 +397,8 @@ void ContactStages::warm_start(StepContext& c) {
   r_ = Eigen::Map<const Eigen::VectorXd>(impulse, static_cast<Eigen::Index>(nc * d));
 }
 
-const ContactStages::ContactFieldRefs& ContactStages::contact_fields(EntitySet& set) {
-  ContactFieldRefs& f = contact_fields_;
-  if (f.set == &set && f.count == set.fields().size()) return f;
-  f.set = &set;
-  f.count = set.fields().size();
+ContactStages::ContactFieldRefs ContactStages::ContactFieldRefs::of(EntitySet& set) {
+  ContactFieldRefs f;
   f.key = &set.field(C::key);  // (each throws when the set lacks it, as the lookups by name did)
   f.bodies = &set.field(C::bodies);
   f.point = &set.field(C::point);
@@ -413,6 +410,7 @@ const ContactStages::ContactFieldRefs& ContactStages::contact_fields(EntitySet& 
   f.normal_force = &set.field(C::normal_force);
   f.status = &set.field(C::status);
   f.velocity = &set.field(C::velocity);
+  f.cache_key.take(set);
   return f;
 }
 
@@ -473,7 +471,6 @@ void ContactStages::setup_solver(State& state) {
 
 void ContactStages::restored(State& state, bool solver_state) {
   initial_overlaps_checked_ = true;
-  contact_fields_ = {};  // resolved anew (the set was loaded)
   if (solver_state_ && solver_state) solver->load_state(state.set(sets::solver));
 }
 
@@ -646,7 +643,7 @@ void ContactStages::store_reactions(StepContext& c) {
   c.contact_impulses = true;
   // The contacts' own results: the impulse (next step's warm start), the world force, the
   // local velocity and the status.
-  const ContactFieldRefs& f = contact_fields(st.set(sets::contacts));
+  const ContactFieldRefs& f = resolved(contact_fields_, st.set(sets::contacts));
   double* impulse = f.impulse->data();
   double* force = f.force->data();
   double* normal_force = f.normal_force->data();

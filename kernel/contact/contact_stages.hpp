@@ -11,6 +11,7 @@
 #include <memory>
 #include <moreau/broadphase.hpp>
 #include <moreau/detector.hpp>
+#include <moreau/field_cache.hpp>
 #include <moreau/integrator.hpp>
 #include <moreau/law.hpp>
 #include <moreau/shape.hpp>
@@ -118,17 +119,16 @@ class ContactStages {
   /// them once (narrow_phase), instead of comparing names for every pair of every step.
   void index_shape_kinds();
   /// The `contacts` set's fields warm_start() and store_reactions() write at every step,
-  /// resolved once per set and field count instead of by name (a map of strings each):
+  /// resolved once (moreau/field_cache.hpp) instead of by name (a map of strings each):
   /// with the integrator's such lookups they were a fifth of a one-body step's CPU (libc
-  /// memcmp, block_on_incline_2d). A Field keeps its address (EntitySet's deque).
+  /// memcmp, block_on_incline_2d).
   struct ContactFieldRefs {
-    const EntitySet* set = nullptr;
-    std::size_t count = 0;
+    FieldCacheKey cache_key;
     Field *key = nullptr, *bodies = nullptr, *point = nullptr, *normal = nullptr, *gap = nullptr, *law = nullptr,
           *impulse = nullptr, *force = nullptr, *normal_force = nullptr, *status = nullptr, *velocity = nullptr;
+    static ContactFieldRefs of(EntitySet& set);  // throws, naming it, when the set lacks one
   };
   ContactFieldRefs contact_fields_;
-  const ContactFieldRefs& contact_fields(EntitySet& set);
   std::vector<int> shape_kind_;                     ///< per contactor: the index of its shape name
   std::vector<const DetectorUse*> kind_detector_;   ///< kinds × kinds: detector_for() of the two names
   std::size_t kinds_ = 0;

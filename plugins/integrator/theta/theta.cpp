@@ -13,6 +13,7 @@
 // is a node field of `rigid.nodes` (a rigid body is one node).
 #include <cmath>
 #include <stdexcept>
+#include <moreau/field_cache.hpp>
 #include <moreau/integrator.hpp>
 #include <moreau/rigid_fields.hpp>
 
@@ -42,8 +43,7 @@ class Theta : public Integrator {
       if (!st.has(R::nodes, f))
         throw InputError("/time/integrator", "the theta integrator works on rigid bodies: modelization \"" +
                                                  model.node_set() + "\" has no rigid field '" + f + "'");
-    inverse_fields_ = InverseFields::of(st);
-    node_fields_ = NodeFields{};  // resolved at the first step (fields may still be declared)
+    resolved(inverse_fields_, st);  // checked again at each detection; the node fields: at the first step
   }
 
   void free_velocity(StepContext& c) override {
@@ -64,7 +64,8 @@ class Theta : public Integrator {
     // the gap at q_θ keeps contacts from closing further during the step.
     State& st = c.state;
     const int d = st.dimension();
-    const NodeFields& r = node_fields(st);
+    const NodeFields& r = resolved(node_fields_, st);
+    resolved(inverse_fields_, st);  // a field declared since: compact_inverse() (const) would look up at each call
     if (!r.px || !r.pq || !r.travel) throw std::logic_error("theta: the node set has no detection fields");
     const std::size_t nb = r.nodes->rows();
     const double a = (1 - c.theta) * c.h;
@@ -109,7 +110,8 @@ class Theta : public Integrator {
   bool compact_inverse(const State& st, std::size_t body, double* M) const override {
     const int d = st.dimension();
     const int k = d == 2 ? 3 : 6;
-    const InverseFields f = &st == inverse_fields_.state ? inverse_fields_ : InverseFields::of(st);
+    InverseFields other;
+    const InverseFields& f = resolved(inverse_fields_, st, other);
     const auto b = static_cast<std::size_t>(f.first_node->data()[body]);  // st.body(body).first_node
     for (int i = 0; i < k * k; ++i) M[i] = 0;
     const double im = f.inverse_mass->row(b)[0];
@@ -154,75 +156,68 @@ class Theta : public Integrator {
 
  private:
   /// The fields compact_inverse() reads for every body a contact touches, resolved once
-  /// (prepare) instead of looked up by name at each call: st.body() and four field lookups
-  /// a body were about a sixth of a 10⁴-sphere step's assembly. A Field keeps its address
-  /// for its State's life (EntitySet holds them in a deque); its buffers do not (depths
-  /// swap), so data() is asked at each call. Another State (none in a run) is looked up.
+  /// (prepare; moreau/field_cache.hpp) instead of looked up by name at each call: st.body()
+  /// and four field lookups a body were about a sixth of a 10⁴-sphere step's assembly.
+  /// Another State (none in a run) is looked up.
   struct InverseFields {
-    const State* state = nullptr;
+    FieldCacheKey cache_key;  // of the node set
     const Field *first_node = nullptr, *inverse_mass = nullptr, *inverse_inertia = nullptr, *orientation = nullptr,
                 *imposed = nullptr;
     static InverseFields of(const State& st) {
       const EntitySet& s = st.set(R::nodes);
       InverseFields f;
-      f.state = &st;
       f.first_node = &st.set(sets::bodies).field(body_fields::first_node);
       f.inverse_mass = &s.field(R::inverse_mass);
       f.inverse_inertia = &s.field(R::inverse_inertia);
       if (st.dimension() == 3) f.orientation = &s.field(R::orientation);
       f.imposed = s.find(R::imposed_velocity);  // only with drivers or hooks (Needed::imposed)
+      f.cache_key.take(st, s);
       return f;
     }
   };
   InverseFields inverse_fields_;
 
-  /// The node fields the step loops read, resolved once per State and its field count
-  /// instead of by name at every stage: the two map lookups (set, field) per field, 17 fields
-  /// in free_velocity and update_dofs, were a fifth of a one-body step's CPU time
-  /// (block_on_incline_2d). Fields keep their address for their State's life (deques, never
-  /// removed); a field declared later changes the count and re-resolves. Buffers swap
-  /// between depths, so data() is asked at each step.
+  /// The node fields the step loops read, resolved once (moreau/field_cache.hpp: again for
+  /// another State or when a field is declared later) instead of by name at every stage:
+  /// the two map lookups (set, field) per field, 17 fields in free_velocity and
+  /// update_dofs, were a fifth of a one-body step's CPU time (block_on_incline_2d). The
+  /// optional ones (find()) are null when the scene does not need them.
   struct NodeFields {
-    const State* state = nullptr;
-    std::size_t count = 0;  // fields of the node set when resolved
+    FieldCacheKey cache_key;
     EntitySet* nodes = nullptr;
     Field *x = nullptr, *v = nullptr, *w = nullptr, *q = nullptr, *vf = nullptr, *wf = nullptr, *im = nullptr,
           *ii = nullptr, *I = nullptr, *F = nullptr, *T = nullptr, *P = nullptr, *imp = nullptr, *px = nullptr,
           *pq = nullptr, *travel = nullptr;
+    static NodeFields of(State& st) {
+      NodeFields r;
+      r.nodes = &st.set(R::nodes);
+      EntitySet& s = *r.nodes;
+      r.x = s.find(R::position);
+      r.v = s.find(R::velocity);
+      r.w = s.find(R::angular_velocity);
+      r.q = s.find(st.dimension() == 2 ? R::angle : R::orientation);
+      r.vf = s.find(R::free_velocity);
+      r.wf = s.find(R::free_angular_velocity);
+      r.im = s.find(R::inverse_mass);
+      r.ii = s.find(R::inverse_inertia);
+      r.I = s.find(R::inertia);
+      r.F = s.find(R::force);
+      r.T = s.find(R::torque);
+      r.P = s.find(R::reaction);
+      r.imp = s.find(R::imposed_velocity);
+      r.px = s.find(R::detection_position);
+      r.pq = s.find(R::detection_rotation);
+      r.travel = s.find(R::travel);
+      r.cache_key.take(st, s);
+      return r;
+    }
   };
   NodeFields node_fields_;
-
-  const NodeFields& node_fields(State& st) {
-    NodeFields& r = node_fields_;
-    if (r.state == &st && r.nodes->fields().size() == r.count) return r;
-    r = NodeFields{};
-    r.state = &st;
-    r.nodes = &st.set(R::nodes);
-    r.count = r.nodes->fields().size();
-    EntitySet& s = *r.nodes;
-    r.x = s.find(R::position);
-    r.v = s.find(R::velocity);
-    r.w = s.find(R::angular_velocity);
-    r.q = s.find(st.dimension() == 2 ? R::angle : R::orientation);
-    r.vf = s.find(R::free_velocity);
-    r.wf = s.find(R::free_angular_velocity);
-    r.im = s.find(R::inverse_mass);
-    r.ii = s.find(R::inverse_inertia);
-    r.I = s.find(R::inertia);
-    r.F = s.find(R::force);
-    r.T = s.find(R::torque);
-    r.P = s.find(R::reaction);
-    r.imp = s.find(R::imposed_velocity);
-    r.px = s.find(R::detection_position);
-    r.pq = s.find(R::detection_rotation);
-    r.travel = s.find(R::travel);
-    return r;
-  }
 
   static double* ptr(Field* f, Depth d = Depth::end) { return f ? f->data(d) : nullptr; }
 
   Fields fields(State& st, bool forces, bool impulses) {
-    const NodeFields& r = node_fields(st);
+    const NodeFields& r = resolved(node_fields_, st);
     Fields f{};
     f.x0 = ptr(r.x, Depth::begin);
     f.x1 = ptr(r.x, Depth::end);

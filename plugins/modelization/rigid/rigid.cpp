@@ -13,6 +13,7 @@
 // components), so no principal-axes rotation is needed.
 #include <array>
 #include <cmath>
+#include <moreau/field_cache.hpp>
 #include <moreau/modelization.hpp>
 #include <moreau/rigid_fields.hpp>
 
@@ -55,7 +56,7 @@ class Rigid : public Modelization {
 
   std::array<double, 3> init_body(State& st, std::size_t body, const Params& p,
                                   const std::optional<MassProperties>& shapes, const Params* material) override {
-    if (&st != contact_fields_.state) contact_fields_ = ContactFields::of(st);
+    resolved(contact_fields_, st);
     const int d = st.dimension();
     const std::size_t b = st.body(body).first_node;  // its row in rigid.nodes
     const bool fixed = p.boolean("fixed");
@@ -138,7 +139,8 @@ class Rigid : public Modelization {
   void generalised_velocity(const State& st, Velocity which, std::size_t n, double* out) const override {
     const int d = st.dimension(), nr = d == 2 ? 1 : 3;
     const bool begin = which == Velocity::begin;
-    const ContactFields f = contact_fields(st);
+    ContactFields other;
+    const ContactFields& f = resolved(contact_fields_, st, other);
     const double* v = (begin ? f.velocity : f.free_velocity)->data(Depth::begin);
     const double* w = (begin ? f.angular_velocity : f.free_angular_velocity)->data(Depth::begin);
     for (int k = 0; k < d; ++k) out[k] = v[n * d + k];
@@ -149,7 +151,8 @@ class Rigid : public Modelization {
   /// the lever arm from the centre of mass at the detection configuration.
   void contact_jacobian(const State& st, const PointOnBody& p, double* H) const override {
     const int d = st.dimension();
-    const Field* at = contact_fields(st).detection_position;
+    ContactFields other;
+    const Field* at = resolved(contact_fields_, st, other).detection_position;
     const double* c = (at ? *at : st.field(R::nodes, R::detection_position)).data() + p.nodes[0] * d;  // (throws without it, as before)
     const double r[3] = {p.point[0] - c[0], p.point[1] - c[1], d == 3 ? p.point[2] - c[2] : p.point[2] - 0.0};
     const double* e0 = p.frame;
@@ -176,31 +179,26 @@ class Rigid : public Modelization {
 
  private:
   /// The fields the contact side reads for every contact side and node (contact_jacobian,
-  /// generalised_velocity), resolved once per State (init_body) instead of looked up by
-  /// name at each call: two lookups a call were about a sixth of a 10⁴-sphere step's
-  /// assembly. A Field keeps its address for its State's life (EntitySet holds them in a
-  /// deque); its buffers do not (depths swap), so data() is asked at each call. A State
-  /// this modelization has not filled (none in a run) is looked up by name.
+  /// generalised_velocity), resolved once (init_body; moreau/field_cache.hpp) instead of
+  /// looked up by name at each call: two lookups a call were about a sixth of a 10⁴-sphere
+  /// step's assembly. A State this modelization has not filled (none in a run) is looked up.
   struct ContactFields {
-    const State* state = nullptr;
+    FieldCacheKey cache_key;
     const Field *detection_position = nullptr, *velocity = nullptr, *angular_velocity = nullptr, *free_velocity = nullptr,
                 *free_angular_velocity = nullptr;
     /// By name (throws, naming the field, when one is missing: as the lookups at each call did).
     static ContactFields of(const State& st) {
       const EntitySet& s = st.set(R::nodes);
       ContactFields f;
-      f.state = &st;
       f.detection_position = s.find(R::detection_position);  // only with interactions (Needed::contacts)
       f.velocity = &s.field(R::velocity);
       f.angular_velocity = &s.field(R::angular_velocity);
       f.free_velocity = &s.field(R::free_velocity);
       f.free_angular_velocity = &s.field(R::free_angular_velocity);
+      f.cache_key.take(st, s);
       return f;
     }
   };
-  ContactFields contact_fields(const State& st) const {
-    return &st == contact_fields_.state ? contact_fields_ : ContactFields::of(st);
-  }
   ContactFields contact_fields_;
 
   /// Moves the body origin to the body-frame point c (both depths): x += R c, v += ω × R c.

@@ -18,6 +18,7 @@
 #include <cstdint>
 #include <deque>
 #include <map>
+#include <memory>
 #include <moreau/error.hpp>
 #include <span>
 #include <string>
@@ -143,6 +144,10 @@ class EntitySet {
 
   const std::string& name() const { return name_; }
   std::size_t rows() const { return rows_; }
+  /// What tells this set from every other, alive or destroyed, for as long as someone holds
+  /// it (FieldCacheKey, field_cache.hpp): its address does not, since a new State's set may
+  /// take a destroyed one's place. A copy, or a set assigned to, has other Fields: a new one.
+  const std::shared_ptr<const void>& identity() const { return identity_.token; }
 
   /// Declares a field of this set. Declaring the same name twice with the same shape is
   /// allowed (two plugins needing one field); different shapes not.
@@ -221,9 +226,19 @@ class EntitySet {
     if (it == index_.end()) throw std::logic_error("no field '" + name + "' in the set '" + name_ + "'");
     return it->second;
   }
+  struct Identity {
+    std::shared_ptr<const void> token = std::make_shared<char>();
+    Identity() = default;
+    Identity(const Identity&) {}  // a new token
+    Identity& operator=(const Identity&) {
+      token = std::make_shared<char>();
+      return *this;
+    }
+  };
   std::string name_;
   int dim_;
   std::size_t rows_ = 0;
+  Identity identity_;
   std::deque<Field> fields_;  // deque: a Field& stays valid when more fields are declared
   std::map<std::string, std::size_t> index_;
 };
