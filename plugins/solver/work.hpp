@@ -152,6 +152,21 @@ struct WorkCosts {
   /// (FCLib) count as before.
   static constexpr double newton_step_call = 1e5;
 
+  /// The same per call for a time step given with W (finite-element bodies, counted by
+  /// `auto` only). Measured as a shadow of `auto`'s run of elastic_block_hit_by_spheres_3d
+  /// (600 steps at its own 1e-6, CPU, i15-eblock): `newton` alone took 16.9 µs a step (0.79
+  /// ns per counted unit, 2.1·10⁴ units a step on 4–5 contacts) against `apgd`'s 0.38: about
+  /// 2.4·10⁴ units short a step (its sparse LU's analysis and allocations). Uncounted, Newton
+  /// was `auto`'s remembered member on 27 of the run's 133 solves, 1.5× `apgd`'s time there.
+  static constexpr double newton_step_call_with_w = 2.4e4;
+
+  /// An ADMM step's extra in a time step given with W (counted by `auto` only), for the same
+  /// reason: there, once Newton counted its call, ADMM became `auto`'s remembered member on
+  /// elastic_block_hit_by_spheres_3d at 1e-6, its steps taking 0.8 CPU ns per counted unit
+  /// (3.1 µs for 3.9·10³ units on 5 contacts) against `apgd`'s 0.38 (445 µs on a step that
+  /// `apgd` finishes in 41): about 3–4·10³ units short a step.
+  static constexpr double admm_step_with_w = 3e3;
+
   /// NLGS's sweep over W's rows in a 3D time step whose problem comes with W (finite-element
   /// bodies: no rigid factor, no body records), as `auto` counts it: `w_rows_step` times the
   /// sweep of `of()`. Measured as shadows of an `apgd` run (300 steps at 1e-3, CPU ns per

@@ -1066,7 +1066,7 @@ class Auto : public Solver {
         o.last = &last_;
         if (who == newton_start_member) o.merits = &newton_merits_;  // its own run goes on as one run
         s = newton_.solve(with_w(), o, x, v);
-        if (bodies_) work_ += WorkCosts::newton_step_call * static_cast<double>(s.iterations);  // work.hpp
+        work_ += newton_call() * static_cast<double>(s.iterations);  // work.hpp
         break;
       }
       case admm_member: {
@@ -1074,6 +1074,7 @@ class Auto : public Solver {
         limits(o);
         o.resume = admm_slices_++ > 0;  // its own run goes on where its last slice stopped
         s = admm_.solve(with_w(), o, x, v);
+        if (!bodies_ && P_->error_scale > 0) work_ += WorkCosts::admm_step_with_w * static_cast<double>(s.iterations);  // work.hpp
         break;
       }
       case apgd_member: {
@@ -1243,6 +1244,12 @@ class Auto : public Solver {
     return s.rate > 0 ? std::log(std::max(from, tol_) / tol_) / s.rate : inf;
   }
 
+  /// A Newton step's cost per call in a time step, beyond its sizes (work.hpp): through the
+  /// bodies (W assembled from the factor) or given with W (finite elements); 0 outside one.
+  double newton_call() const {
+    return bodies_ ? WorkCosts::newton_step_call : P_->error_scale > 0 ? WorkCosts::newton_step_call_with_w : 0.0;
+  }
+
   /// The work of one Newton step on this problem: remembered, or from W's fill (its LU
   /// has 1.1 to 5 nnz(W) entries on the corpus, 1.5 typically: 2 taken here).
   double newton_step_estimate() const {
@@ -1251,7 +1258,7 @@ class Auto : public Solver {
     const double nnz = bodies_ && P_->W.rows() == 0 ? 12.0 * P_->dim * P_->dim * nc_ : static_cast<double>(P_->W.nonZeros());
     const double n = P_->dim * nc_;
     const double estimate = WorkCosts::assembly(nnz, n) + WorkCosts::factorisation(nnz, nnz, n) + 3 * costs_.product +
-                            (bodies_ ? WorkCosts::newton_step_call : 0.0);
+                            newton_call();
     // In a time step, ADMM's step remembered from earlier solves (its first one factorises the
     // same W) bounds it from below: a 3D LU fills in far beyond W's size (wet_pile_3d: ADMM's
     // first step 1.1e7 units, Newton's 3e7, the estimate from the size a few 10⁶).
