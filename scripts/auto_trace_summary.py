@@ -28,15 +28,28 @@ SLICE = re.compile(r"auto: (.+?) \[(\w+)\], budget \S+, took ([\d.e+-]+) work \(
 FIRST_NLGS = re.compile(r"auto: first nlgs ([\d.e+-]+) work \(([\d.e+-]+) ns\), best ([\d.e+inf-]+)")
 
 
+SHADOW = re.compile(r"^shadow: (.+?) solve (\d+) cpu (\S+) it (\d+) err (\S+) conv (\d) work (\S+)")
+
+
+def shadow_line(line):
+    """One MOREAU_SHADOW_TRACE line as (label, solve index, fields), or None for any other line
+    (also used by scripts/shadow_phases.py)."""
+    m = SHADOW.match(line)
+    if not m:
+        return None
+    return m.group(1), int(m.group(2)), dict(cpu=float(m.group(3)), it=int(m.group(4)), err=float(m.group(5)),
+                                              ok=m.group(6) == "1", work=float(m.group(7)))
+
+
 def read(path):
     """Per solve index: {label: fields}; per solve index: auto's slices (member, kind, work, s, from, reached, best)."""
     solves, slices, pending, labels = collections.defaultdict(dict), {}, [], []
     with open(path) as f:
         for line in f:
-            if line.startswith("shadow: "):
-                p = line.split()
-                label, index = p[1], int(p[3])
-                solves[index][label] = dict(cpu=float(p[5]), it=int(p[7]), err=float(p[9]), ok=p[11] == "1", work=float(p[13]))
+            shadow = shadow_line(line)
+            if shadow:
+                label, index, fields = shadow
+                solves[index][label] = fields
                 if label not in labels:
                     labels.append(label)
                 if label == "auto":

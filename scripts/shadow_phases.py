@@ -16,9 +16,8 @@ nothing, which flatters that column); then the solves on which --ref lost most a
 """
 import argparse
 import collections
-import re
 
-LINE = re.compile(r"^shadow: (.+?) solve (\d+) cpu (\S+) it (\d+) err (\S+) conv (\d) work (\S+)")
+from auto_trace_summary import shadow_line
 
 
 def label_of(label, spec, ref):
@@ -35,14 +34,15 @@ def read(specs, ref, drop):
         path, offset, names = (spec.split(":") + ["0", ""])[:3]
         with open(path) as f:
             for line in f:
-                m = LINE.match(line)
-                if not m or m.group(1) in drop:
+                shadow = shadow_line(line)
+                if not shadow or shadow[0] in drop:
                     continue
-                key = label_of(m.group(1), names, ref)
-                i = int(m.group(2)) + int(offset or 0)
+                label, index, fields = shadow
+                key = label_of(label, names, ref)
+                i = index + int(offset or 0)
                 if key in solves[i]:
                     continue
-                solves[i][key] = (float(m.group(3)), float(m.group(5)), m.group(6) == "1")
+                solves[i][key] = (fields["cpu"], fields["err"], fields["ok"])
                 if key not in labels:
                     labels.append(key)
     return solves, labels
