@@ -20,6 +20,11 @@ struct WorkCosts {
   double error = 1;    ///< the natural-map error given u
   double vector = 1;   ///< one pass over the dim·nc unknowns (axpy, projection)
   double sweep = 1;    ///< one NLGS sweep (local solves included), through W's rows or the body records
+  /// The extra per call of a Newton step and of an ADMM step in a time step, beyond what
+  /// their sizes count (counted by `auto` only): newton_step_call through the bodies (of()
+  /// through the factor), newton_step_call_with_w and admm_step_with_w given with W in a time
+  /// step (with_w_in_step()); 0 elsewhere (FCLib problems, ADMM through the bodies).
+  double newton_call = 0, admm_call = 0;
 
   /// The per-call parts of a product and of an error evaluation; the rest of each scales
   /// with what is read (w_rows_product(), error_contacts()), so a partial pass (auto's start
@@ -42,6 +47,7 @@ struct WorkCosts {
       const double k = P.factor.k, nb = static_cast<double>(P.factor.inverse_mass.size()) / std::max(1.0, k * k);
       c.product = 0.5 * (nc * 2 * 2 * d * k + nb * k * k) + 1.0 * n + 200;
       c.sweep = nc * (0.3 * 2 * 2 * d * k + local / 4) + 200;  // a record read, the two Δv written
+      c.newton_call = newton_step_call;
     } else {
       const double nnz = static_cast<double>(P.W.nonZeros());
       c.product = w_rows_product(nnz, n) + product_call;
@@ -110,7 +116,7 @@ struct WorkCosts {
     return (dense && !dense_3d ? 2.5 : 3.0) * (counted * (0.3 * record + local) + 200);
   }
   /// The records' size, and the cache they are compared with where `auto` decides whether to
-  /// pack them before NLGS runs (auto.cpp records_would_fit(): packing 10⁴ spheres' records
+  /// pack them before NLGS runs (auto/auto.hpp records_would_fit(): packing 10⁴ spheres' records
   /// cost 3 ms a step, for nothing when APGD finishes).
   static double record_bytes(const LocalProblem& P, double record) { return 8 * record * static_cast<double>(P.contacts()); }
   static constexpr double cache_bytes = 2e6;
@@ -193,6 +199,10 @@ struct WorkCosts {
   static WorkCosts with_w_in_step(const LocalProblem& P) {
     WorkCosts c = of(P, false);
     if (P.error_scale > 0 && P.dim == 3) c.sweep *= w_rows_step;
+    if (P.error_scale > 0) {  // a time step (finite-element bodies): Newton's and ADMM's calls
+      c.newton_call = newton_step_call_with_w;
+      c.admm_call = admm_step_with_w;
+    }
     return c;
   }
 

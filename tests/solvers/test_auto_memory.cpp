@@ -383,7 +383,7 @@ TEST(AutoMemory, InATimeStepGivenWithWNewtonAndADMMStepsCountTheirCallCost) {
   p.factor = moreau::BodyFactor{};  // W only
   moreau::LocalProblem step = p;
   step.error_scale = p.q.norm();
-  for (int member : {2, 4}) {  // Newton's own run, ADMM (auto.cpp's Member order)
+  for (int member : {2, 4}) {  // Newton's own run, ADMM (auto.hpp's Member order)
     moreau::SolverReport rep[2];
     Eigen::VectorXd r[2], u[2];
     for (int in_step = 0; in_step < 2; ++in_step) {

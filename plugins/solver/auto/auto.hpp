@@ -171,7 +171,6 @@ class Auto : public Solver {
   double run_nlgs(Eigen::VectorXd& x, long max_sweeps, double units, bool first, double* reached);
   apgd::Options apgd_options(long max_iterations, double units, apgd::State& state, bool same_problem, bool resume);
   const LocalProblem& with_w();
-  double newton_call() const;
   double newton_step_estimate() const;
   // records.cpp: NLGS's body records, and the products u = W x + q.
   void velocities(const Eigen::VectorXd& x, Eigen::VectorXd& v);

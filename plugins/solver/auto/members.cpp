@@ -30,7 +30,7 @@ double Auto::run_member(Member who, Eigen::VectorXd& x, double units, long budge
       o.last = &last_;
       if (who == newton_start_member) o.merits = &newton_merits_;  // its own run goes on as one run
       s = newton_.solve(with_w(), o, x, v);
-      work_ += newton_call() * static_cast<double>(s.iterations);  // work.hpp
+      work_ += costs_.newton_call * static_cast<double>(s.iterations);  // work.hpp: its extra per call
       break;
     }
     case admm_member: {
@@ -38,7 +38,7 @@ double Auto::run_member(Member who, Eigen::VectorXd& x, double units, long budge
       limits(o);
       o.resume = admm_slices_++ > 0;  // its own run goes on where its last slice stopped
       s = admm_.solve(with_w(), o, x, v);
-      if (!bodies_ && P_->error_scale > 0) work_ += WorkCosts::admm_step_with_w * static_cast<double>(s.iterations);  // work.hpp
+      work_ += costs_.admm_call * static_cast<double>(s.iterations);  // work.hpp: its extra per call (0 but given with W in a time step)
       break;
     }
     case apgd_member: {
@@ -168,12 +168,6 @@ const LocalProblem& Auto::with_w() {
   return assembled_;
 }
 
-/// A Newton step's cost per call in a time step, beyond its sizes (work.hpp): through the
-/// bodies (W assembled from the factor) or given with W (finite elements); 0 outside one.
-double Auto::newton_call() const {
-  return bodies_ ? WorkCosts::newton_step_call : P_->error_scale > 0 ? WorkCosts::newton_step_call_with_w : 0.0;
-}
-
 /// The work of one Newton step on this problem: remembered, or from W's fill (its LU
 /// has 1.1 to 5 nnz(W) entries on the corpus, 1.5 typically: 2 taken here).
 double Auto::newton_step_estimate() const {
@@ -182,7 +176,7 @@ double Auto::newton_step_estimate() const {
   const double nnz = bodies_ && P_->W.rows() == 0 ? 12.0 * P_->dim * P_->dim * nc_ : static_cast<double>(P_->W.nonZeros());
   const double n = P_->dim * nc_;
   const double estimate = WorkCosts::assembly(nnz, n) + WorkCosts::factorisation(nnz, nnz, n) + 3 * costs_.product +
-                          newton_call();
+                          costs_.newton_call;
   // In a time step, ADMM's step remembered from earlier solves (its first one factorises the
   // same W) bounds it from below: a 3D LU fills in far beyond W's size (wet_pile_3d: ADMM's
   // first step 1.1e7 units, Newton's 3e7, the estimate from the size a few 10⁶).
