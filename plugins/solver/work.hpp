@@ -214,6 +214,13 @@ struct WorkCosts {
   /// Assembling an n × n matrix of W's pattern from W (Newton's Jacobian A + B W + λI).
   static double assembly(double nnz, double n) { return 15.0 * nnz + 100 * n + 6000; }
   static double triangular_solves(double nnz_l, double nnz_u) { return 2.0 * (nnz_l + nnz_u); }
+  /// A Newton step as `auto` estimates it before one is measured (newton_core.cpp counts the
+  /// Jacobian's assembly, the factorisation and its solves, and the line search's products):
+  /// W of nnz_w entries, n unknowns, factors of nnz_l and nnz_u entries (lu_fill.hpp), `product`
+  /// one product by W; the solves and the passes over the unknowns are within the products.
+  static double newton_step(double nnz_w, double n, double nnz_l, double nnz_u, double product) {
+    return assembly(nnz_w, n) + factorisation(nnz_l, nnz_u, n) + 3 * product;
+  }
 };
 
 class WorkMeter {

@@ -70,6 +70,7 @@
 #include <moreau/solver.hpp>
 #include <vector>
 
+#include "../lu_fill.hpp"
 #include "../work.hpp"
 #include "floor.hpp"
 #include "start_check.hpp"
@@ -172,6 +173,7 @@ class Auto : public Solver {
   apgd::Options apgd_options(long max_iterations, double units, apgd::State& state, bool same_problem, bool resume);
   const LocalProblem& with_w();
   double newton_step_estimate() const;
+  bool refine_fill(const std::array<MemberState, member_count>& m);
   // records.cpp: NLGS's body records, and the products u = W x + q.
   void velocities(const Eigen::VectorXd& x, Eigen::VectorXd& v);
   void records(const LocalProblem& P, bool pack);
@@ -287,6 +289,9 @@ class Auto : public Solver {
   double start_check_work_ = -1;        ///< its counted work in step 0 (−1: not used)
   bool newton_led_ = false;     ///< Newton's own run goes on step by step (newton_first)
   double newton_step_ = 0;      ///< the work of a Newton step measured in this solve (0: none yet)
+  LuFill fill_;                 ///< Newton's LU fill predicted on this problem's W (lu_fill.hpp), when fill_known_
+  bool fill_known_ = false;     ///< the estimate uses fill_ (refine_fill())
+  bool fill_analysed_ = false;  ///< refine_fill() ran in this solve
   /// NLGS's or APGD's own run for the floor (floor.hpp), beside the slices of the rule.
   struct OwnRun {
     Eigen::VectorXd x;         ///< its iterate (empty: the warm start)

@@ -11,6 +11,7 @@ namespace moreau::auto_solver {
 void Auto::slice(std::array<MemberState, member_count>& m, int who, double budget, bool later) {
   MemberState& ms = m[who];
   const bool newton = who == newton_member || who == newton_start_member;
+  if ((newton || who == admm_member) && refine_fill(m) && (later || !in_step())) return;  // decided anew (refine_fill())
   if (later) budget = std::max({budget, 5 * ms.per_iteration, costs_.sweep});
   if (who == newton_member && in_step() && !std::isfinite(best_err_)) {
     // Newton from the best iterate first in a solve whose start's error is not known yet

@@ -108,6 +108,7 @@ SolverReport Auto::solve(const LocalProblem& P, Eigen::VectorXd& r, Eigen::Vecto
   nlgs_run_sweeps_ = 0;
   own_ = {};
   newton_step_ = 0;
+  fill_known_ = fill_analysed_ = false;
   floor_k_ = {auto_floor::member_k(direct, false), auto_floor::member_k(direct, true)};
   // Problems given with W (FCLib): the floor from the first stage on. In a time step (W
   // through the bodies) NLGS's first stage or the incumbent's slice is the first slice,

@@ -165,6 +165,7 @@ SolverReport Newton::solve(const LocalProblem& P, const Options& o, Eigen::Vecto
         pattern_nnz = M.nonZeros();
       }
       lu_.factorize(M);
+      analysed_ = true;
       if (lu_.info() != Eigen::Success) continue;
       dir = lu_.solve(-phi);
       {  // the factorisation and the two triangular solves

@@ -48,9 +48,12 @@ class Newton {
   /// `r`: warm start on entry (resized and zeroed if its size is wrong), on exit the best
   /// finite iterate seen; `u` = W r + q. error = natural-map error of the returned r.
   SolverReport solve(const LocalProblem& P, const Options& o, Eigen::VectorXd& r, Eigen::VectorXd& u);
+  /// The last factorisation's entries (SparseLU's nnzL() + nnzU()); 0 before one.
+  double factor_entries() const { return analysed_ ? static_cast<double>(lu_.nnzL() + lu_.nnzU()) : 0.0; }
 
  private:
   Eigen::SparseLU<Eigen::SparseMatrix<double>> lu_;
+  bool analysed_ = false;
 };
 
 }  // namespace moreau::newton
