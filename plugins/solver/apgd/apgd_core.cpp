@@ -5,6 +5,7 @@
 #include "scaled_factor.hpp"
 
 #include <cmath>
+#include <cstring>
 #include <memory>
 #include <moreau/contact_error.hpp>
 #include <moreau/factor_matrix.hpp>
@@ -323,14 +324,28 @@ SolverReport solve(const LocalProblem& P, const Options& o, Eigen::VectorXd& r, 
     best_err = st.err;
   } else {
     project_all(P, r, x);
-    W.apply(x, Wx);
+    // The caller's product of this start (Options::start_wr), when x is its start bit for bit.
+    const bool handed = o.start_r && o.start_wr && o.start_r->size() == n && o.start_wr->size() == n &&
+                        std::memcmp(o.start_r->data(), x.data(), sizeof(double) * static_cast<std::size_t>(n)) == 0;
+    if (handed) {
+      Wx = *o.start_wr;
+      // Its error too, when u is computed again on exit anyway (o.velocities or recompute).
+      if (o.start_error >= 0 && (o.velocities || o.recompute_error)) {
+        best_err = o.start_error;
+        meter.add(cost.error);
+      }
+    } else {
+      W.apply(x, Wx);
+    }
     y = x;
     Wy = Wx;
   }
+  bool u_is_start = false;  // u = W x + q of the start, x and W x unchanged since (no step)
   if (!(best_err >= 0)) {  // a start, or a resumed run whose last step was not measured
     u = Wx + P.q;
     best_err = natural_map_error(P, x, u);
     meter.add(cost.error);
+    u_is_start = true;
   }
   // The start's product and copies; packing the factor (H L per contact side) costs about a
   // product.
@@ -356,6 +371,7 @@ SolverReport solve(const LocalProblem& P, const Options& o, Eigen::VectorXd& r, 
   const double* q = P.q.data();
   for (long it = 1; it <= o.max_iterations && best_err > o.tolerance; ++it) {
     rep.iterations = it;
+    u_is_start = false;
     bool ok = false;
     int backtracks = 0;
     for (int bt = 0; bt < 60; ++bt, ++backtracks) {
@@ -425,7 +441,7 @@ SolverReport solve(const LocalProblem& P, const Options& o, Eigen::VectorXd& r, 
     meter.add(cost.product);
     rep.error = natural_map_error(P, r, u);
   } else {
-    u = Wx + P.q;  // as the iteration measured it
+    if (!u_is_start) u = Wx + P.q;  // as the iteration measured it (a call without a step, auto's start check, has it)
     rep.error = best_err;
   }
   rep.converged = rep.error <= o.tolerance;

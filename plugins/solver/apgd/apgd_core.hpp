@@ -81,6 +81,16 @@ struct Options {
   /// the error (`auto`'s slices outside a time step, which would pay that product at the end
   /// of every slice whose last step was not its best).
   bool velocities = true;
+  /// A start the caller has already multiplied: W start_r (`start_wr`) and, when ≥ 0, the
+  /// error of start_r with u = W start_r + q (`start_error`). Used instead of computing them
+  /// again when the start (r projected on the cones) is start_r bit for bit; their work is
+  /// counted as when computed, so the counts, and `auto`'s decisions, do not change.
+  /// `auto` hands over its start check in a time step given with W (finite elements), where
+  /// APGD's start recomputed it (about 2·10³ instructions a solve on
+  /// elastic_block_hit_by_spheres_3d).
+  const Eigen::VectorXd* start_r = nullptr;
+  const Eigen::VectorXd* start_wr = nullptr;
+  double start_error = -1;
 };
 
 SolverReport solve(const LocalProblem& P, const Options& o, Eigen::VectorXd& r, Eigen::VectorXd& u);

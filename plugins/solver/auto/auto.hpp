@@ -67,6 +67,7 @@
 #include <limits>
 #include <moreau/contact_error.hpp>
 #include <moreau/factor_matrix.hpp>
+#include <moreau/field_cache.hpp>
 #include <moreau/solver.hpp>
 #include <vector>
 
@@ -340,6 +341,12 @@ class Auto : public Solver {
   bool records_fit_ = false;     ///< NLGS's records fit in 4× the cache (records())
   bool records_laid_out_ = false;  ///< body_sweeper_.layout() was done for this solve
   Eigen::VectorXd start_x_;  ///< start_error()'s iterate (APGD's check of the start)
+  Eigen::VectorXd start_wr_;  ///< W r of the start, in a time step given with W (start_wr_ok_): APGD's first slice takes it
+  bool start_wr_ok_ = false;
+  /// Scratch of a slice (its iterate), of NLGS's first stage, and a member's u = W x + q:
+  /// kept over the solves so that a solve allocates nothing (an allocation and its free
+  /// were about 190 instructions, each solve of a light step paid two to four).
+  Eigen::VectorXd slice_x_, first_x_, member_u_;
   Eigen::VectorXd best_u_;      ///< W best_ + q, when its member gave it (best_u_ok_)
   bool best_u_ok_ = false;
   std::vector<Eigen::Index> order_;
@@ -347,14 +354,16 @@ class Auto : public Solver {
     double t, err;
   };
   std::vector<Check> hist_;
-  /// The solver set's fields of the saved state by their index in the set, found by name
-  /// once and checked by name at each use (a set at the address of a destroyed one may
-  /// hold other fields: no pointer is kept).
+  /// The solver set's fields of the saved state, in this order.
   static constexpr const char* state_names[6] = {"solves", "member_cost", "member_iteration", "member_next_try", "member_try_interval", "at_rest"};
-  mutable std::array<std::size_t, 6> state_index_{};
-  /// The six fields' data, in state_names' order.
-  template <class Set, class Data>
-  void state_data(Set& set, std::array<Data*, 6>& data) const;
+  /// They resolved once for the set save_state() writes (moreau/field_cache.hpp: again for
+  /// another set, even at the address of a destroyed one, or when a field is declared since).
+  struct StateFields {
+    FieldCacheKey cache_key;
+    std::array<Field*, 6> field{};
+    static StateFields of(EntitySet& set);
+  };
+  mutable StateFields state_fields_;
   // Kept over the solves of a run.
   long solve_index_ = 0;
   std::array<Memory, member_count> memory_;

@@ -10,7 +10,7 @@ namespace moreau::auto_solver {
 /// One slice of `who` from x (its iterate on exit), at most `units` of work. `reached`: the
 /// lowest error of the slice; returns NLGS's window rate (0 for the others).
 double Auto::run_member(Member who, Eigen::VectorXd& x, double units, long budget, double* reached) {
-  Eigen::VectorXd v;
+  Eigen::VectorXd& v = member_u_;  // (kept over the solves: no allocation at each slice)
   SolverReport s;
   auto limits = [&](auto& o) {  // the members' Options share these four
     o.tolerance = tol_;
@@ -45,7 +45,13 @@ double Auto::run_member(Member who, Eigen::VectorXd& x, double units, long budge
       // Its packed products are kept over the slices of a solve; its run goes on while it
       // holds the best iterate.
       const bool later = apgd_slices_++ > 0;
-      s = apgd::solve(*P_, apgd_options(budget, units, apgd_state_, later, later && best_by_ == apgd_member), x, v);  // through the factor when W was not given
+      apgd::Options a = apgd_options(budget, units, apgd_state_, later, later && best_by_ == apgd_member);
+      if (!later && start_wr_ok_) {  // the start check's W r and error, used when x is the start
+        a.start_r = &start_;
+        a.start_wr = &start_wr_;
+        a.start_error = start_err_;
+      }
+      s = apgd::solve(*P_, a, x, v);  // through the factor when W was not given
       break;
     }
     default:
@@ -60,7 +66,7 @@ double Auto::run_member(Member who, Eigen::VectorXd& x, double units, long budge
   // not recompute it. Problems given with W outside a time step (FCLib) recompute it, as
   // the guarantee's counts have it.
   if (in_step() && who == apgd_member && best_err_ < before) {
-    best_u_ = v;
+    best_u_.swap(v);  // (v is scratch: its values are not used after the slice)
     best_u_ok_ = true;
   }
   *reached = s.error;
@@ -81,7 +87,7 @@ double Auto::run_nlgs(Eigen::VectorXd& x, long max_sweeps, double units, bool fi
     body_sweeper_.reset_velocities(x);  // the first stage starts where records() set Δv
   }
   const double w0 = work_;
-  Eigen::VectorXd v;
+  Eigen::VectorXd& v = member_u_;  // (kept over the solves: no allocation at each run)
   hist_.clear();
   double own_best = inf, rate = 0;
   *reached = own_best;

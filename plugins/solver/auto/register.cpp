@@ -40,14 +40,16 @@ std::vector<FieldSpec> Auto::state_fields(int) const {
           f("at_rest", 1, "1", "auto: 1 when the last solve's warm start met the tolerance at its first check (a step at rest), else 0", FileType::int32)};
 }
 
-// Called after every step's solve: the six fields are found by their index in the set
-// (state_data()), not looked up by name at each step (a map of strings each, two of the
-// names beyond the short-string buffer: about 2·10³ instructions a step, more than a
-// light solve's own bookkeeping on cannonball_3d).
+// Called after every step's solve: the six fields are resolved once (StateFields,
+// moreau/field_cache.hpp), not looked up by name at each step (a map of strings each, two
+// of the names beyond the short-string buffer: about 2·10³ instructions a step, more than a
+// light solve's own bookkeeping on cannonball_3d; found by their index in the set and
+// checked by name, still about 900 a step).
 void Auto::save_state(EntitySet& set) const {
   if (!remember_) return;
+  const StateFields& sf = resolved(state_fields_, set);
   std::array<double*, 6> f;
-  state_data(set, f);
+  for (std::size_t i = 0; i < 6; ++i) f[i] = sf.field[i]->data();
   f[0][0] = static_cast<double>(solve_index_);
   double *cost = f[1], *step = f[2], *next = f[3], *interval = f[4];
   for (int k = 0; k < member_count; ++k) {
@@ -61,8 +63,8 @@ void Auto::save_state(EntitySet& set) const {
 
 void Auto::load_state(const EntitySet& set) {
   if (!remember_) return;
-  std::array<const double*, 6> f;
-  state_data(set, f);
+  std::array<const double*, 6> f;  // (once per run, on restart: by name)
+  for (std::size_t i = 0; i < 6; ++i) f[i] = set.field(state_names[i]).data();
   solve_index_ = static_cast<long>(f[0][0]);
   const double *cost = f[1], *step = f[2], *next = f[3], *interval = f[4];
   for (int k = 0; k < member_count; ++k) {
@@ -74,18 +76,11 @@ void Auto::load_state(const EntitySet& set) {
   at_rest_ = f[5][0] != 0;
 }
 
-/// The six fields' data, in state_names' order.
-template <class Set, class Data>
-void Auto::state_data(Set& set, std::array<Data*, 6>& data) const {
-  auto& fields = set.fields();
-  for (std::size_t i = 0; i < 6; ++i) {
-    std::size_t& at = state_index_[i];
-    if (at >= fields.size() || fields[at].name() != state_names[i]) {
-      const Field& f = set.field(state_names[i]);  // (throws when the set lacks it, as the lookups by name did)
-      for (at = 0; &fields[at] != &f;) ++at;
-    }
-    data[i] = fields[at].data();
-  }
+Auto::StateFields Auto::StateFields::of(EntitySet& set) {
+  StateFields s;
+  for (std::size_t i = 0; i < 6; ++i) s.field[i] = &set.field(state_names[i]);  // (throws when the set lacks one)
+  s.cache_key.take(set);
+  return s;
 }
 
 MOREAU_REGISTER(Auto, "auto")

@@ -37,9 +37,10 @@ void Auto::slice(std::array<MemberState, member_count>& m, int who, double budge
     work_ += costs_.product + costs_.error;
     keep(ms.own, ms.own_err);
   }
-  Eigen::VectorXd x = ms.own_run ? ms.own : best_;
+  Eigen::VectorXd& x = slice_x_;  // (kept over the solves: no allocation at each slice)
+  x = ms.own_run ? ms.own : best_;
   const double from = ms.own_run ? ms.own_err : best_err_;
-  if (!ms.own_run && (x - start_).squaredNorm() != 0 && !continues_own_run(who)) ms.clean = false;
+  if (!ms.own_run && ms.clean && !continues_own_run(who) && (x - start_).squaredNorm() != 0) ms.clean = false;
   const double t_start = work_, t0 = trace_ ? thread_seconds() : 0;
   double reached = inf;
   const long before_it = total_;

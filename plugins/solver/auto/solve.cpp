@@ -26,6 +26,7 @@ SolverReport Auto::solve(const LocalProblem& P, Eigen::VectorXd& r, Eigen::Vecto
   apgd_check_every_ = 1;  // records() may raise it
   assembled_ready_ = false;
   best_u_ok_ = false;
+  start_wr_ok_ = false;
   // 0. The start: given W (an FCLib problem), a warm start that already meets the
   // tolerance is the answer, for one product and one error evaluation (less than a
   // sweep); from r = 0 the answer is r = 0 exactly when no contact approaches (every
@@ -34,7 +35,8 @@ SolverReport Auto::solve(const LocalProblem& P, Eigen::VectorXd& r, Eigen::Vecto
   double start_err = inf;
   start_known_ = true;
   start_check_work_ = -1;  // (a product and an error when the start's error is known)
-  if ((r.array() == 0).all()) {
+  const bool zero = (r.array() == 0).all();  // (cold_ below: r is unchanged until then)
+  if (zero) {
     bool open = true;
     for (Eigen::Index a = 0; a < nc && open; ++a) open = P.q[d * a] >= 0;
     if (open) {
@@ -49,7 +51,10 @@ SolverReport Auto::solve(const LocalProblem& P, Eigen::VectorXd& r, Eigen::Vecto
     records(P, !at_rest_ && !starts_with_another_member(nc <= direct_max_contacts_));  // once per solve
     if (at_rest_ && records_fit_ && rest_check(r, u, rep)) return rep;  // still at rest: the whole solve
   } else if (P.error_scale > 0) {  // a time step given with W (finite elements): as before
-    velocities(r, u);
+    // W r kept for APGD's start (run_member(), apgd::Options::start_wr), which took it again.
+    start_wr_ = P.W * r;
+    start_wr_ok_ = true;
+    u = start_wr_ + P.q;  // (as velocities(): the product, then + q)
     start_err = natural_map_error(P, r, u);
   } else {
     // Given with W outside a time step (FCLib): the check stops at the first contacts whose
@@ -84,7 +89,7 @@ SolverReport Auto::solve(const LocalProblem& P, Eigen::VectorXd& r, Eigen::Vecto
     nlgs_first = records_fit_;  // records() packs them then (within 4× the cache)
   }
   start_ = r;
-  cold_ = (r.array() == 0).all();
+  cold_ = zero;
   best_ = r;
   best_err_ = start_err;  // ∞ when not evaluated (r = 0 with approaching contacts)
   best_by_ = -1;
@@ -117,11 +122,13 @@ SolverReport Auto::solve(const LocalProblem& P, Eigen::VectorXd& r, Eigen::Vecto
 
   auto finish = [&]() {
     if (!std::isfinite(best_err_)) best_ = start_;  // no iterate was ever evaluated
-    r = best_;
+    // The answer handed over by swapping buffers, not copied (best_ and best_u_ are set
+    // anew by the next solve before they are read; r and u keep their sizes, n).
+    r.swap(best_);
     rep.iterations = total_;
     rep.work = work_;
     if (best_u_ok_ && std::isfinite(best_err_)) {  // u and the error of the best iterate, as its member computed them
-      u = best_u_;
+      u.swap(best_u_);
       rep.error = best_err_;
     } else {
       velocities(r, u);
@@ -173,7 +180,8 @@ SolverReport Auto::solve(const LocalProblem& P, Eigen::VectorXd& r, Eigen::Vecto
     // The warm start, unless a tried member did better; after a lost challenge the warm
     // start (the challenger's iterate, whose error is all that is known, can be far worse:
     // APGD's on bonded contacts), with Δv set anew (the challenger may have moved it).
-    Eigen::VectorXd x = challenged ? start_ : best_;
+    Eigen::VectorXd& x = first_x_;  // (kept over the solves: no allocation at each)
+    x = challenged ? start_ : best_;
     if ((x - start_).squaredNorm() != 0) ms.clean = false;
     if (bodies_ && records_packed_ && (challenged || !ms.clean)) body_sweeper_.reset_velocities(x);  // (else run_nlgs packs them from x)
     current_ = nlgs_member;

@@ -46,7 +46,7 @@ bool Auto::rest_check(Eigen::VectorXd& r, Eigen::VectorXd& u, SolverReport& rep)
   rest_checked_ = true;
   if (!(s.error <= tol_ && x.allFinite())) return false;
   ++solve_index_;
-  r = x;
+  r.swap(x);  // (x, start_x_, is scratch: set from r before its next use)
   rep.error = s.error;
   rep.converged = true;
   rep.work = rest_work_;
