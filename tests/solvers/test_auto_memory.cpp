@@ -406,3 +406,43 @@ TEST(AutoMemory, InATimeStepGivenWithWNewtonAndADMMStepsCountTheirCallCost) {
     EXPECT_NEAR(rep[1].work - rep[0].work, call * static_cast<double>(rep[1].iterations), 1e-9 * rep[1].work) << member;
   }
 }
+
+TEST(AutoMemory, AMemberThatFinishesAStepTheRememberedOneDidNotIsTriedFirstNext) {
+  // Newton's own run is remembered far below what this step needs: its slice (thrice its
+  // memory) does not finish it, another member does, and that member is tried first at the
+  // next solve (before, at its turn, here solve 10⁶: on silo_janssen_2d from step 2609 of
+  // `auto`'s run, APGD, remembered at 10× its cost, waited 256 solves while Newton led all
+  // 200 steps, and finished every step Newton did not).
+  const moreau::LocalProblem p = factored(2, 8, 16, 11u);
+  auto state = [](moreau::Solver& s, double newton) {
+    moreau::EntitySet set = state_set(s);
+    set.field("solves").data()[0] = 10;
+    for (int k = 0; k < 5; ++k) {
+      set.field("member_cost").data()[k] = k == 0 ? 1e6 : k == 2 ? newton : 0.0;
+      set.field("member_next_try").data()[k] = 1e6;
+      set.field("member_try_interval").data()[k] = 64;
+    }
+    s.load_state(set);
+  };
+  const nlohmann::json params = {{"tolerance", 1e-6}, {"remember", true}};
+  auto a = make("auto", params);
+  state(*a, 1.0);
+  Eigen::VectorXd r = Eigen::VectorXd::Zero(p.q.size()), u;
+  ASSERT_TRUE(a->solve(p, r, u).converged);
+  moreau::EntitySet after = saved_state(*a);
+  const double* next = after.field("member_next_try").data();
+  int tried_next = -1;
+  for (int k = 0; k < 5; ++k)
+    if (next[k] != 1e6) tried_next = k;
+  ASSERT_GE(tried_next, 0) << "the winner is tried next";
+  EXPECT_NE(tried_next, 2) << "not Newton, which did not finish";
+  EXPECT_EQ(next[tried_next], 12.0) << "at the next solve (this one is solve 11)";
+  EXPECT_EQ(after.field("member_try_interval").data()[tried_next], 4.0);
+  // Newton remembered at what the step needs finishes it within its budget: no try moves.
+  auto b = make("auto", params);
+  state(*b, 1e5);
+  Eigen::VectorXd r2 = Eigen::VectorXd::Zero(p.q.size());
+  ASSERT_TRUE(b->solve(p, r2, u).converged);
+  moreau::EntitySet after_b = saved_state(*b);
+  for (int k = 0; k < 5; ++k) EXPECT_EQ(after_b.field("member_next_try").data()[k], 1e6) << k;
+}

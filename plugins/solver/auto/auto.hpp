@@ -14,7 +14,8 @@
 // that goes on with its own run past its budget is learnt at what it took (a memory rises
 // at most twofold a solve: remembered()); after a step at rest the warm start's error is
 // checked first, by APGD's start, and a warm start within the tolerance is the answer
-// (rest_probe()); a challenger that wins at its first check is learnt (learn()).
+// (rest_probe()); a challenger that wins at its first check is learnt (learn()); a member
+// that finishes a step the incumbent led is tried first at the next solve (learn()).
 // 1. NLGS runs on exactly the `nlgs` schedule (error at sweep 1, then every `check_every`
 //    sweeps; through body velocities in the time-stepper), so a step that NLGS finishes
 //    costs what `nlgs` costs. It keeps going while its measured rate says it finishes
@@ -282,6 +283,7 @@ class Auto : public Solver {
 
   int winner_ = -1;             ///< the member whose run reached the tolerance (−1: none)
   int challenger_ = -1;         ///< the member tried first on the incumbent's budget in this solve (−1: none)
+  int incumbent_ = -1;          ///< the remembered member that leads this solve (−1: none)
   long nlgs_run_sweeps_ = 0;    ///< sweeps of NLGS's own run in this solve (its checks' schedule)
   std::array<double, 2> floor_k_{4.5, 8};  ///< the floor's K (floor.hpp): NLGS's and APGD's, Newton's and ADMM's
   double start_err_ = inf;      ///< the start's error (∞: not evaluated, r = 0)

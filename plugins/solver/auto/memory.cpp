@@ -69,6 +69,17 @@ double Auto::other_cost() const {
 /// another member's iterate.
 void Auto::learn(const std::array<MemberState, member_count>& m) {
   at_rest_ = best_err_ <= tol_ && total_ <= 2;  // the warm start (after at most one sweep) was the answer
+  // A step that the remembered member led and another member finished (the incumbent
+  // did not within its budget): that member is tried first at the next solve (its wait
+  // back to 4 solves). Only a run from the warm start teaches the memory, so a member
+  // that only ever finishes after the incumbent is never measured, and its lost
+  // challenges had pushed its turn to every 256 solves: on silo_janssen_2d (1e-4, from
+  // step 2609 of `auto`'s run) Newton led all of 200 steps while APGD, remembered at 10×
+  // its cost since a hard step, finished the steps Newton did not.
+  if (incumbent_ >= 0 && winner_ >= 0 && winner_ != incumbent_ && winner_ != challenger_) {
+    memory_[winner_].interval = 4;
+    memory_[winner_].next_probe = std::min(memory_[winner_].next_probe, solve_index_ + 1);
+  }
   // A solve that its first member finished at its first check (a warm start that was
   // already the answer, or no contact closing) says nothing of the members' costs.
   // But a challenger that wins at its first check is learnt at what it took: it was tried

@@ -95,6 +95,7 @@ SolverReport Auto::solve(const LocalProblem& P, Eigen::VectorXd& r, Eigen::Vecto
   best_by_ = -1;
   winner_ = -1;
   challenger_ = -1;
+  incumbent_ = -1;
   total_ = 0;
   work_ = start_check_work_ >= 0 ? start_check_work_ : std::isfinite(start_err) ? costs_.product + costs_.error : 0;  // the start's check
   admm_slices_ = 0;
@@ -146,6 +147,7 @@ SolverReport Auto::solve(const LocalProblem& P, Eigen::VectorXd& r, Eigen::Vecto
   // a challenge waits for a step that moves: at rest every member's cost is its check).
   if (rest_probe(u)) return finish();
   const int inc = remember_ ? incumbent(m) : -1;
+  incumbent_ = inc;
   // NLGS's sweep cost now if NLGS may run or be weighed before the slices (first, or as
   // the challenger, whose turn challenger() checks): else it waits (sweep_cost()).
   if (inc < 0 || inc == nlgs_member || memory_[nlgs_member].next_probe <= solve_index_) sweep_cost();
