@@ -246,6 +246,16 @@ class Auto : public Solver {
     const double from = k == admm_member && s.own.size() ? s.own_err : best_err_;
     return s.rate > 0 ? std::log(std::max(from, tol_) / tol_) / s.rate : inf;
   }
+  /// Whether `who` is Newton's own run after one slice that gained under 10× (no sign of
+  /// its quadratic convergence): its next slice is then at most the work it has had (one
+  /// doubling), not the usual 5 steps. Its one-slice rate, applied to the best error (NLGS's,
+  /// near the tolerance), made it look nearly done: dense disks μ 1, cold, 1e-4, its own run
+  /// 3.2e-3 → 2.1e-3 in 2 steps got 5 steps (1.1e6, 1.3× what NLGS alone needs) and gained
+  /// 4 % (docs/solvers-history.md, branch i15-onestep). Not after a 10× gain: blocks on the
+  /// elastic slab at 1e-8 (0.94 → 1.7e-2) then converges in its next slices.
+  static bool newton_slow_start(const MemberState& ms, int who) {
+    return who == newton_start_member && ms.slices == 1 && ms.rate * ms.spent < std::log(10.0);
+  }
   /// A member's remembered work after a solve that showed `c` (work per contact): the
   /// exponential average of the two, but one solve raises it at most twofold. Without the
   /// cap one hard step left a member's memory 20× above its usual cost for hundreds of
