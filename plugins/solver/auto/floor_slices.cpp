@@ -95,7 +95,10 @@ bool Auto::floor_slice(std::array<MemberState, member_count>& m) {
     const bool newton = who == newton_start_member || who == newton_member;
     const double step = iteration_work(who, ms.per_iteration);
     upcoming = newton && ms.slices == 0 ? 4 * step : std::max(5 * step, costs_.sweep);
-    if (newton_slow_start(ms, who)) upcoming = std::min(upcoming, std::max(ms.spent, step)), budget = std::min(budget, upcoming);
+    if (newton_slow_start(ms, who)) {
+      upcoming = std::min(upcoming, std::max(ms.spent, step));
+      budget = std::min(budget, upcoming);
+    }
   }
   auto floor_runs_but = runs;
   if (own >= 0) floor_runs_but[own].in = false;  // its own run grows with the slice
