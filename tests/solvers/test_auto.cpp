@@ -83,3 +83,30 @@ TEST(Auto, TheCheckOfAWarmStartGivenWithWStopsAtTheContactsThatMissTheTolerance)
   // Main c43c422: nlgs.work + check (the whole check before the sweep).
   EXPECT_LT(rep.work, nlgs.work + 0.7 * check) << "check " << check << ", nlgs " << nlgs.work;
 }
+
+TEST(Auto, NewtonsOwnRunAfterASlowFirstSliceGetsAtMostTheWorkItHasHad) {
+  // Auto::newton_slow_start() (auto.hpp; docs/solvers-history.md, branch i15-onestep). Dense
+  // disks μ 1, step 600, cold, at 1e-4 (the guarantee study's corpus export, scripts/corpus.py;
+  // tests/data/corpus held an older export of that step, 124 contacts, where NLGS and APGD
+  // finish before Newton's second slice and auto takes 1.48× nlgs's work): Newton's own run
+  // takes a floor slice of 2 steps, 3.2e-3 → 2.1e-3, and its one-slice rate, applied to the
+  // best error (NLGS's, 5 % above the tolerance), makes it look nearly done. Without the rule
+  // its next slice was at least 5 steps and gained 4 %: auto's counted work 4.38× `nlgs`'s
+  // (3.57·10⁶ against 8.15·10⁵); with it (after a first slice gaining under 10×, at most the
+  // work it has had) 3.41×. The bound is between the two, about halfway, so that another
+  // compiler's rounding moving an iteration count does not fail it while the rule's loss
+  // does (checked: fails with the rule disabled).
+  const auto prob = moreau::fclib::read(std::string(MOREAU_SOURCE_DIR) + "/tests/data/corpus/disks2d_dense_60_mu1-step00000600.hdf5");
+  const LocalProblem& P = prob.local;
+  const double tol = 1e-4;
+  Eigen::VectorXd rn = Eigen::VectorXd::Zero(P.dim * P.contacts()), un;
+  const SolverReport nlgs = make("nlgs", {{"tolerance", tol}})->solve(P, rn, un);
+  ASSERT_TRUE(nlgs.converged);
+  Eigen::VectorXd r = Eigen::VectorXd::Zero(P.dim * P.contacts()), u;
+  const SolverReport rep = make("auto", {{"tolerance", tol}})->solve(P, r, u);
+  expect_honest(P, r, u, rep, tol, "auto (dense disks μ 1, cold)");
+  EXPECT_TRUE(rep.converged);
+  const double ratio = rep.work / nlgs.work;
+  std::printf("dense disks mu 1 step 600, cold, 1e-4: nlgs %.4g, auto %.4g (%.2f x nlgs)\n", nlgs.work, rep.work, ratio);
+  EXPECT_LT(ratio, 3.9) << "auto " << rep.work << ", nlgs " << nlgs.work;
+}
