@@ -66,8 +66,6 @@
 #include <cstdlib>
 #include <deque>
 #include <limits>
-#include <moreau/contact_error.hpp>
-#include <moreau/factor_matrix.hpp>
 #include <moreau/field_cache.hpp>
 #include <moreau/solver.hpp>
 #include <vector>
@@ -146,8 +144,10 @@ class Auto : public Solver {
   // starts.cpp: the warm start's checks (rule 0; a step at rest).
   bool rest_probe(Eigen::VectorXd& u);
   bool rest_check(Eigen::VectorXd& r, Eigen::VectorXd& u, SolverReport& rep);
+  void trace_rest_check(double work, double err) const;
   void start_error(Eigen::VectorXd& r, Eigen::VectorXd& u);
-  apgd::Options start_options(double* work);
+  SolverReport apgd_start_check(const Eigen::VectorXd& r, Eigen::VectorXd& u, double* work);
+  void keep_start_check(double err, const Eigen::VectorXd& u);
   bool start_error_above(double bound);
   static double start_work(const LocalProblem& P, const Eigen::VectorXd& r);
   // memory.cpp: what is remembered over the solves of a run.
@@ -331,8 +331,13 @@ class Auto : public Solver {
   bool pack_due_ = false;        ///< records() would have them packed: velocities() packs them at its first call
   bool sweep_costed_ = false;    ///< costs_.sweep is NLGS's through the records (sweep_cost())
   bool nlgs_ready_ = false;      ///< prepare_nlgs() was done for this solve
-  bool rest_checked_ = false;    ///< rest_check() ran in this solve: its error rest_err_, its work rest_work_
-  double rest_err_ = inf, rest_work_ = 0;
+  /// rest_check()'s outcome, handed over to rest_probe() when the step is not at rest.
+  struct RestCheck {
+    bool made = false;  ///< rest_check() ran in this solve
+    double err = inf;   ///< the warm start's error by APGD's check (its iterate: start_x_)
+    double work = 0;    ///< the check's counted work
+  };
+  RestCheck rest_;
   long apgd_check_every_ = 1;    ///< APGD's steps between two errors
   std::vector<double> impulse_, dv_;  ///< scratch of products through the factor
   WorkCosts costs_;
@@ -352,7 +357,7 @@ class Auto : public Solver {
   bool assembled_ready_ = false;
   bool records_fit_ = false;     ///< NLGS's records fit in 4× the cache (records())
   bool records_laid_out_ = false;  ///< body_sweeper_.layout() was done for this solve
-  Eigen::VectorXd start_x_;  ///< start_error()'s iterate (APGD's check of the start)
+  Eigen::VectorXd start_x_;  ///< the start projected by APGD's check (apgd_start_check())
   Eigen::VectorXd start_wr_;  ///< W r of the start, in a time step given with W (start_wr_ok_): APGD's first slice takes it
   bool start_wr_ok_ = false;
   /// Scratch of a slice (its iterate), of NLGS's first stage, and a member's u = W x + q:

@@ -3,6 +3,9 @@
 // the solve's: run_member() for every member, run_nlgs() for NLGS's sweeps and its checks,
 // the options of an APGD slice, W assembled for Newton and ADMM (with_w()) and the estimate
 // of a Newton step that the rule weighs before one has run.
+#include <moreau/contact_error.hpp>
+#include <moreau/factor_matrix.hpp>
+
 #include "auto.hpp"
 
 namespace moreau::auto_solver {

@@ -2,6 +2,8 @@
 // when NLGS runs or their product is due, and NLGS's sweep cost through them (work.hpp); and
 // velocities(), u = W x + q by the cheapest way available in the solve (the records, APGD's
 // packed product, the factor, or W).
+#include <moreau/factor_matrix.hpp>
+
 #include "auto.hpp"
 
 namespace moreau::auto_solver {

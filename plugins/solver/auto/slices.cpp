@@ -2,6 +2,8 @@
 // a problem given with W. next_member() picks the member (the least work left at its rate,
 // else an untried member or one that had under a fifth of the work, probe_order()), slice()
 // runs it and book_slice() books its rate, its need and whether it gained.
+#include <moreau/contact_error.hpp>
+
 #include "auto.hpp"
 
 namespace moreau::auto_solver {

@@ -3,6 +3,8 @@
 // `finish` lambda: the best iterate, learn(), the trace). Kept as one function so that the
 // order of the rule's stages reads from top to bottom; the stages' parts live in the other
 // files of this directory.
+#include <moreau/contact_error.hpp>
+
 #include "auto.hpp"
 
 namespace moreau::auto_solver {
@@ -11,7 +13,7 @@ SolverReport Auto::solve(const LocalProblem& P, Eigen::VectorXd& r, Eigen::Vecto
   const int d = P.dim;
   sweep_costed_ = false;  // NLGS's preparations, each when first needed in this solve (sweep_cost())
   nlgs_ready_ = false;
-  rest_checked_ = false;
+  rest_.made = false;
   const Eigen::Index nc = P.contacts(), n = d * nc;
   SolverReport rep;
   if (r.size() != n || !r.allFinite()) r = Eigen::VectorXd::Zero(n);

@@ -2,6 +2,8 @@
 // when needed: start_error_above()), the start's error before the slices, and the check of a
 // step at rest by APGD's start (rest_check() before the set-up, rest_probe() after). Their
 // counted work is part of the solve's (start_work()).
+#include <moreau/contact_error.hpp>
+
 #include "auto.hpp"
 
 namespace moreau::auto_solver {
@@ -19,15 +21,13 @@ namespace moreau::auto_solver {
 bool Auto::rest_probe(Eigen::VectorXd& u) {
   if (!(at_rest_ && bodies_ && records_fit_)) return false;
   const double w0 = work_;
-  if (rest_checked_) {  // rest_check() made it: its outcome, as start_error() keeps it
-    current_ = apgd_member;
-    ++apgd_slices_;
-    work_ += rest_work_;
-    keep(start_x_, rest_err_, &u);
+  if (rest_.made) {  // rest_check() made it: its outcome, as start_error() keeps it
+    work_ += rest_.work;
+    keep_start_check(rest_.err, u);
   } else {
     start_error(start_, u);
   }
-  if (trace_) std::fprintf(stderr, "auto: rest check %.3g work, warm start at %.2e\n", work_ - w0, best_err_);
+  if (trace_) trace_rest_check(work_ - w0, best_err_);
   return best_err_ <= tol_;
 }
 
@@ -38,23 +38,25 @@ bool Auto::rest_probe(Eigen::VectorXd& u) {
 /// around APGD's check, which took 2.8·10³). True when it is the answer: r, u and `rep`
 /// are the solve's; else rest_probe() takes its outcome (the same numbers as before).
 bool Auto::rest_check(Eigen::VectorXd& r, Eigen::VectorXd& u, SolverReport& rep) {
-  rest_work_ = 0;
-  Eigen::VectorXd& x = start_x_;
-  x = r;
-  const SolverReport s = apgd::solve(*P_, start_options(&rest_work_), x, u);
-  rest_err_ = s.error;
-  rest_checked_ = true;
-  if (!(s.error <= tol_ && x.allFinite())) return false;
+  rest_ = {true, inf, 0};
+  const SolverReport s = apgd_start_check(r, u, &rest_.work);
+  rest_.err = s.error;
+  if (!(s.error <= tol_ && start_x_.allFinite())) return false;
   ++solve_index_;
-  r.swap(x);  // (x, start_x_, is scratch: set from r before its next use)
+  r.swap(start_x_);  // (start_x_ is scratch: set from r before its next use)
   rep.error = s.error;
   rep.converged = true;
-  rep.work = rest_work_;
+  rep.work = rest_.work;
   if (trace_) {
-    std::fprintf(stderr, "auto: rest check %.3g work, warm start at %.2e\n", rest_work_, s.error);
+    trace_rest_check(rest_.work, s.error);
     trace_solve({}, rep);
   }
   return true;
+}
+
+/// MOREAU_AUTO_TRACE: the check of a step at rest, its work and the warm start's error.
+void Auto::trace_rest_check(double work, double err) const {
+  std::fprintf(stderr, "auto: rest check %.3g work, warm start at %.2e\n", work, err);
 }
 
 /// The start's error before the slices (nlgs_sweeps = 0, or records beyond the caches).
@@ -62,12 +64,8 @@ bool Auto::rest_check(Eigen::VectorXd& r, Eigen::VectorXd& u, SolverReport& rep)
 /// anyway; that slice then continues from it): one product instead of two.
 void Auto::start_error(Eigen::VectorXd& r, Eigen::VectorXd& u) {
   if (bodies_ && !records_packed_ && !pack_due_) {
-    Eigen::VectorXd& x = start_x_;  // kept over the solves: no allocation at each step
-    x = r;
-    current_ = apgd_member;
-    const SolverReport s = apgd::solve(*P_, start_options(&work_), x, u);
-    ++apgd_slices_;
-    keep(x, s.error, &u);  // its u = W x + q: the answer's when x is (finish())
+    const SolverReport s = apgd_start_check(r, u, &work_);
+    keep_start_check(s.error, u);  // its u = W x + q: the answer's when x is (finish())
     return;
   }
   velocities(r, u);
@@ -75,9 +73,10 @@ void Auto::start_error(Eigen::VectorXd& r, Eigen::VectorXd& u) {
   work_ += costs_.product + costs_.error;
 }
 
-/// APGD's options for the start's error only (its products packed and kept in apgd_state_
-/// for a slice of APGD that follows), the work counted into *work.
-apgd::Options Auto::start_options(double* work) {
+/// APGD's check of the start r (no step): its projection in start_x_ (kept over the solves:
+/// no allocation at each step), u = W x + q, its error; its products packed and kept in
+/// apgd_state_ for a slice of APGD that follows; the work counted into *work.
+SolverReport Auto::apgd_start_check(const Eigen::VectorXd& r, Eigen::VectorXd& u, double* work) {
   apgd::Options o;
   o.tolerance = tol_;
   o.max_iterations = 0;  // the start only
@@ -85,7 +84,16 @@ apgd::Options Auto::start_options(double* work) {
   o.state = &apgd_state_;
   o.recompute_error = false;
   o.scaling = apgd_scaling();
-  return o;
+  start_x_ = r;
+  return apgd::solve(*P_, o, start_x_, u);
+}
+
+/// APGD's check of the start booked as its first slice: start_x_ the best iterate when its
+/// error `err` is the lowest so far, with its u.
+void Auto::keep_start_check(double err, const Eigen::VectorXd& u) {
+  current_ = apgd_member;
+  ++apgd_slices_;
+  keep(start_x_, err, &u);
 }
 
 /// Whether the warm start's error exceeds `bound`, its check (rule 0, start_check.hpp)
