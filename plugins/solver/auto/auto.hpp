@@ -219,16 +219,13 @@ class Auto : public Solver {
   /// x becomes the best iterate when its error e is the lowest so far. `u`: its W x + q as
   /// the member computed it (the same product finish() would take: it is then not
   /// recomputed; in a time step an NLGS-finished solve paid it twice, a quarter of a step
-  /// at rest on mortar_wall_2d).
-  void keep(const Eigen::VectorXd& x, double e, const Eigen::VectorXd* u = nullptr) {
-    if (e < best_err_ && x.allFinite()) {
-      best_u_ok_ = u != nullptr;
-      if (u) best_u_ = *u;
-      best_err_ = e;
-      best_ = x;
-      best_by_ = current_;
-    }
-  }
+  /// at rest on mortar_wall_2d). Out of line (solve.cpp), as copy().
+  void keep(const Eigen::VectorXd& x, double e, const Eigen::VectorXd* u = nullptr);
+  /// to = from, through one out-of-line copy (solve.cpp) shared by the copies of a solve's
+  /// vectors: inlined, each copy site was about 3 cache lines of vectorised code, and each
+  /// solve of a light scene starts with cold instruction caches (docs/solvers-history.md,
+  /// branch i15-tidy).
+  static void copy(Eigen::VectorXd& to, const Eigen::VectorXd& from);
   /// Books a slice: its work and the rate it showed (ln of the error gained per unit of work).
   static void account(MemberState& ms, double took, double rate) {
     ms.spent += took;

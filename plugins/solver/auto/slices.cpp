@@ -41,7 +41,7 @@ void Auto::slice(std::array<MemberState, member_count>& m, int who, double budge
     keep(ms.own, ms.own_err);
   }
   Eigen::VectorXd& x = slice_x_;  // (kept over the solves: no allocation at each slice)
-  x = ms.own_run ? ms.own : best_;
+  copy(x, ms.own_run ? ms.own : best_);
   const double from = ms.own_run ? ms.own_err : best_err_;
   if (!ms.own_run && ms.clean && !continues_own_run(who) && (x - start_).squaredNorm() != 0) ms.clean = false;
   const double t_start = work_, t0 = trace_ ? thread_seconds() : 0;

@@ -54,7 +54,7 @@ SolverReport Auto::solve(const LocalProblem& P, Eigen::VectorXd& r, Eigen::Vecto
     if (at_rest_ && records_fit_ && rest_check(r, u, rep)) return rep;  // still at rest: the whole solve
   } else if (P.error_scale > 0) {  // a time step given with W (finite elements): as before
     // W r kept for APGD's start (run_member(), apgd::Options::start_wr), which took it again.
-    start_wr_ = P.W * r;
+    start_wr_.noalias() = P.W * r;  // (into its own memory: Eigen assumes aliasing and would allocate a temporary)
     start_wr_ok_ = true;
     u = start_wr_ + P.q;  // (as velocities(): the product, then + q)
     start_err = natural_map_error(P, r, u);
@@ -90,9 +90,9 @@ SolverReport Auto::solve(const LocalProblem& P, Eigen::VectorXd& r, Eigen::Vecto
     // with `nlgs_sweeps: 0`; NLGS stays a member of the slices.
     nlgs_first = records_fit_;  // records() packs them then (within 4× the cache)
   }
-  start_ = r;
+  copy(start_, r);
   cold_ = zero;
-  best_ = r;
+  copy(best_, r);
   best_err_ = start_err;  // ∞ when not evaluated (r = 0 with approaching contacts)
   best_by_ = -1;
   winner_ = -1;
@@ -245,5 +245,18 @@ void Auto::trace_solve(const std::array<MemberState, member_count>& m, const Sol
     if (memory_[k].cost > 0) std::fprintf(stderr, " %s %.4g", member_name[k], memory_[k].cost);
   std::fprintf(stderr, "\n");
 }
+
+/// x becomes the best iterate when its error e is the lowest so far (see auto.hpp).
+void Auto::keep(const Eigen::VectorXd& x, double e, const Eigen::VectorXd* u) {
+  if (e < best_err_ && x.allFinite()) {
+    best_u_ok_ = u != nullptr;
+    if (u) copy(best_u_, *u);
+    best_err_ = e;
+    copy(best_, x);
+    best_by_ = current_;
+  }
+}
+
+[[gnu::noinline]] void Auto::copy(Eigen::VectorXd& to, const Eigen::VectorXd& from) { to = from; }
 
 }  // namespace moreau::auto_solver

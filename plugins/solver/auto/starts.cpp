@@ -84,7 +84,7 @@ SolverReport Auto::apgd_start_check(const Eigen::VectorXd& r, Eigen::VectorXd& u
   o.state = &apgd_state_;
   o.recompute_error = false;
   o.scaling = apgd_scaling();
-  start_x_ = r;
+  copy(start_x_, r);
   return apgd::solve(*P_, o, start_x_, u);
 }
 
