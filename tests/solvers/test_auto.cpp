@@ -84,6 +84,21 @@ TEST(Auto, TheCheckOfAWarmStartGivenWithWStopsAtTheContactsThatMissTheTolerance)
   EXPECT_LT(rep.work, nlgs.work + 0.7 * check) << "check " << check << ", nlgs " << nlgs.work;
 }
 
+/// `auto`'s counted work over `member`'s on P, both from `start` at `tol` (each must converge;
+/// `auto`'s answer is checked honest): the ratio the guarantee study reports for one pair.
+static void auto_work_over(const LocalProblem& P, const Eigen::VectorXd& start, const char* member, double tol,
+                           const char* what, double* ratio) {
+  Eigen::VectorXd rm = start, um;
+  const SolverReport alone = make(member, {{"tolerance", tol}})->solve(P, rm, um);
+  ASSERT_TRUE(alone.converged) << member;
+  Eigen::VectorXd r = start, u;
+  const SolverReport rep = make("auto", {{"tolerance", tol}})->solve(P, r, u);
+  expect_honest(P, r, u, rep, tol, what);
+  EXPECT_TRUE(rep.converged);
+  *ratio = rep.work / alone.work;
+  std::printf("%s, %g: %s %.4g, auto %.4g (%.2f x %s)\n", what, tol, member, alone.work, rep.work, *ratio, member);
+}
+
 TEST(Auto, NewtonsOwnRunAfterASlowFirstSliceGetsAtMostTheWorkItHasHad) {
   // Auto::newton_slow_start() (auto.hpp; docs/solvers-history.md, branch i15-onestep). Dense
   // disks μ 1, step 600, cold, at 1e-4 (the guarantee study's corpus export, scripts/corpus.py;
@@ -98,17 +113,10 @@ TEST(Auto, NewtonsOwnRunAfterASlowFirstSliceGetsAtMostTheWorkItHasHad) {
   // does (checked: fails with the rule disabled).
   const auto prob = moreau::fclib::read(std::string(MOREAU_SOURCE_DIR) + "/tests/data/corpus/disks2d_dense_60_mu1-step00000600.hdf5");
   const LocalProblem& P = prob.local;
-  const double tol = 1e-4;
-  Eigen::VectorXd rn = Eigen::VectorXd::Zero(P.dim * P.contacts()), un;
-  const SolverReport nlgs = make("nlgs", {{"tolerance", tol}})->solve(P, rn, un);
-  ASSERT_TRUE(nlgs.converged);
-  Eigen::VectorXd r = Eigen::VectorXd::Zero(P.dim * P.contacts()), u;
-  const SolverReport rep = make("auto", {{"tolerance", tol}})->solve(P, r, u);
-  expect_honest(P, r, u, rep, tol, "auto (dense disks μ 1, cold)");
-  EXPECT_TRUE(rep.converged);
-  const double ratio = rep.work / nlgs.work;
-  std::printf("dense disks mu 1 step 600, cold, 1e-4: nlgs %.4g, auto %.4g (%.2f x nlgs)\n", nlgs.work, rep.work, ratio);
-  EXPECT_LT(ratio, 3.9) << "auto " << rep.work << ", nlgs " << nlgs.work;
+  double ratio = 0;
+  ASSERT_NO_FATAL_FAILURE(auto_work_over(P, Eigen::VectorXd::Zero(P.dim * P.contacts()), "nlgs", 1e-4,
+                                         "dense disks mu 1 step 600, cold", &ratio));
+  EXPECT_LT(ratio, 3.9);
 }
 
 TEST(Auto, AWarmStartWithinTenTimesTheToleranceGivesApgdAnEighthOfANewtonStepFirst) {
@@ -121,17 +129,8 @@ TEST(Auto, AWarmStartWithinTenTimesTheToleranceGivesApgdAnEighthOfANewtonStepFir
   // the step is not bought: 1.73×. The bound is about halfway (checked: fails with the rule
   // disabled, newton_rent = 0).
   const auto prob = moreau::fclib::read(std::string(MOREAU_SOURCE_DIR) + "/tests/data/auto/box_tower_3d-step00000100-corpus.hdf5");
-  const LocalProblem& P = prob.local;
   ASSERT_TRUE(prob.guess_r);
-  const double tol = 1e-4;
-  Eigen::VectorXd ra = *prob.guess_r, ua;
-  const SolverReport apgd = make("apgd", {{"tolerance", tol}})->solve(P, ra, ua);
-  ASSERT_TRUE(apgd.converged);
-  Eigen::VectorXd r = *prob.guess_r, u;
-  const SolverReport rep = make("auto", {{"tolerance", tol}})->solve(P, r, u);
-  expect_honest(P, r, u, rep, tol, "auto (box tower step 100, warm)");
-  EXPECT_TRUE(rep.converged);
-  const double ratio = rep.work / apgd.work;
-  std::printf("box tower step 100, warm, 1e-4: apgd %.4g, auto %.4g (%.2f x apgd)\n", apgd.work, rep.work, ratio);
-  EXPECT_LT(ratio, 3.0) << "auto " << rep.work << ", apgd " << apgd.work;
+  double ratio = 0;
+  ASSERT_NO_FATAL_FAILURE(auto_work_over(prob.local, *prob.guess_r, "apgd", 1e-4, "box tower step 100, warm", &ratio));
+  EXPECT_LT(ratio, 3.0);
 }

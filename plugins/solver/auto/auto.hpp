@@ -249,9 +249,11 @@ class Auto : public Solver {
   /// near the tolerance), made it look nearly done: dense disks μ 1, cold, 1e-4, its own run
   /// 3.2e-3 → 2.1e-3 in 2 steps got 5 steps (1.1e6, 1.3× what NLGS alone needs) and gained
   /// 4 % (docs/solvers-history.md, branch i15-onestep). Not after a 10× gain: blocks on the
-  /// elastic slab at 1e-8 (0.94 → 1.7e-2) then converges in its next slices.
-  static bool newton_slow_start(const MemberState& ms, int who) {
-    return who == newton_start_member && ms.slices == 1 && ms.rate * ms.spent < std::log(10.0);
+  /// elastic slab at 1e-8 (0.94 → 1.7e-2) then converges in its next slices. Not in a time
+  /// step: on silo_janssen_2d's whole run at 1e-4 it made the solve stage 1.24× slower
+  /// (misses 1 → 7; solvers-history.md, i15-onestep, "Taken out of time steps").
+  bool newton_slow_start(const MemberState& ms, int who) const {
+    return !in_step() && who == newton_start_member && ms.slices == 1 && ms.rate * ms.spent < std::log(10.0);
   }
   /// A member's remembered work after a solve that showed `c` (work per contact): the
   /// exponential average of the two, but one solve raises it at most twofold. Without the

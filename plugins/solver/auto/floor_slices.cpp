@@ -73,6 +73,7 @@ bool Auto::floor_slice(std::array<MemberState, member_count>& m) {
   // in one to three steps ended at 1.6–1.8× its work (docs/solvers.md "Guarantee").
   if (newton_first(m)) {
     MemberState& s = m[newton_start_member];
+    exploring_ = -1;
     // Rule 2b's rent (docs/solvers.md): a warm start within 10× of the tolerance needs no
     // more than the 10× one Newton step promises, and APGD often gains that cheaply; its own
     // run first gets an eighth of a Newton step, and its rate then decides whether the step
@@ -81,11 +82,9 @@ bool Auto::floor_slice(std::array<MemberState, member_count>& m) {
     // pairs Newton wins in one step there pay the eighth (box tower step 5: 1.45 → 1.62).
     const double rent = newton_rent * newton_step_estimate() - own_[apgd_member].spent;
     if (s.slices == 0 && rent > 0 && own_[apgd_member].iterations < max_it_ && !start_error_above(10 * tol_)) {
-      exploring_ = -1;
       own_slice(apgd_member, rent, &m[apgd_member]);  // booked as its slice: the rule sees its rate
       return true;
     }
-    exploring_ = -1;
     const double from = s.slices ? s.own_err : start_err_, w0 = work_;
     slice(m, newton_start_member, 0.5 * iteration_work(newton_start_member, s.per_iteration), false);  // one step
     s.unfloored += work_ - w0;

@@ -15,9 +15,7 @@ void Auto::slice(std::array<MemberState, member_count>& m, int who, double budge
   const bool newton = who == newton_member || who == newton_start_member;
   if ((newton || who == admm_member) && refine_fill(m) && (later || !in_step())) return;  // decided anew (refine_fill())
   if (later) budget = std::max({budget, 5 * ms.per_iteration, costs_.sweep});
-  // Not in a time step: on silo_janssen_2d's whole run at 1e-4 it made the solve stage 1.24x
-  // slower (misses 1 -> 7; solvers-history.md, i15-onestep, "Taken out of time steps").
-  if (later && !in_step() && newton_slow_start(ms, who)) budget = std::min(budget, std::max(ms.spent, ms.per_iteration));
+  if (later && newton_slow_start(ms, who)) budget = std::min(budget, std::max(ms.spent, ms.per_iteration));
   if (who == newton_member && in_step() && !std::isfinite(best_err_)) {
     // Newton from the best iterate first in a solve whose start's error is not known yet
     // (it starts with that member, remembered: NLGS's records are not packed): the start's
