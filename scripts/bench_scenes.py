@@ -10,7 +10,7 @@ missed the tolerance (from the end-of-run summary), and auto over the best membe
 
     python3 scripts/bench_scenes.py [--moreau build/bin/moreau] [--steps 1000 | --full-length] [--repeat 3]
         [--solvers auto nlgs newton admm apgd] [--only NAME ...] [--skip NAME ...] [--tolerance X]
-        [--cpu | --stage-cpu] [--timeout SECONDS] [--shadow] [--out build/bench_scenes]
+        [--cpu | --stage-cpu] [--timeout SECONDS] [--shadow [--from-solve K]] [--out build/bench_scenes]
 
 --full-length runs every scene over its whole duration (its own number of steps: the issue's
 silo 5000, silo_janssen_2d 4500, masonry_arch_2d 6000, ...) instead of the first --steps.
@@ -31,6 +31,12 @@ time is its thread CPU time in solve() per step of the run (W's assembly, which 
 stage time counts for a solver that reads W, is not in it). Whole runs of scenes whose
 outcome depends on the answers within the tolerance (a silo that jams or flows) then compare
 the solvers on the same sequence of problems.
+
+--from-solve K (with --shadow) leaves a run's first K − 1 solves out of every solver's time
+(MOREAU_SHADOW_TRACE gives each solve's CPU time): the warm-started steps only, without the
+run's cold start, where each solver's code and data are touched for the first time (`auto`
+runs two or three members there). Times stay per step: the kept solves' time over the kept
+steps (the solves a step makes being taken as the run's average).
 """
 import argparse
 import json
@@ -109,9 +115,10 @@ def run(moreau, scene, name, steps, tmp, tolerance=None, cpu=False, stage_cpu=Fa
             "misses": int(miss.group(1)) if miss else 0, "worst": float(worst.group(1)) if worst else 0.0}
 
 
-def run_shadow(moreau, scene, names, steps, tmp, tolerance=None, timeout=None):
+def run_shadow(moreau, scene, names, steps, tmp, tolerance=None, timeout=None, from_solve=1):
     """One run with names[0] as the scene's solver and the others as shadows: per solver the
-    same fields as run() gives, from the run's MOREAU_SHADOW_REPORT."""
+    same fields as run() gives, from the run's MOREAU_SHADOW_REPORT (from its trace when
+    from_solve > 1: the solves from that one on)."""
     s = json.loads(json.dumps(scene))
     s["solver"], tol = solver_block(scene, names[0], tolerance)
     shadows = [solver_block(scene, n, tolerance)[0] for n in names[1:]]
@@ -122,6 +129,8 @@ def run_shadow(moreau, scene, names, steps, tmp, tolerance=None, timeout=None):
         os.remove(report)
     n = min(steps, round(s["time"]["duration"] / s["time"]["step"]))
     env = dict(os.environ, MOREAU_SHADOW_SOLVERS=json.dumps(shadows), MOREAU_SHADOW_REPORT=report)
+    if from_solve > 1:
+        env["MOREAU_SHADOW_TRACE"] = "1"
     try:
         p = subprocess.run([moreau, "run", path, "--out", os.path.join(tmp, "out.h5"), "--steps", str(n)], capture_output=True,
                            text=True, env=env, timeout=timeout)
@@ -131,6 +140,16 @@ def run_shadow(moreau, scene, names, steps, tmp, tolerance=None, timeout=None):
         msg = p.stderr.strip().splitlines()[-1] if p.stderr.strip() else f"exit {p.returncode}"
         return {sv: {"error": msg} for sv in names}
     rows = json.load(open(report))["solvers"]
+    if from_solve > 1:  # per label: the CPU time of the solves from `from_solve` on, and their count
+        kept = {}
+        for m in re.finditer(r"^shadow: (.+) solve (\d+) cpu ([0-9.e+-]+) ", p.stderr, re.M):
+            if int(m.group(2)) >= from_solve:
+                t, c = kept.get(m.group(1), (0.0, 0))
+                kept[m.group(1)] = (t + float(m.group(3)), c + 1)
+        for r in rows:
+            t, c = kept.get(r["label"], (0.0, 0))
+            # per kept step: the kept solves' time over the steps they make at the run's solves per step
+            r["cpu_seconds"] = t / c * r["solves"] if c else 0.0
     return {sv: {"solve": r["cpu_seconds"] / n, "steps": n, "tol": tol, "misses": r["misses"], "worst": r["worst_error"],
                  "solves": r["solves"], "iterations_per_solve": r["iterations_per_solve"]}
             for sv, r in zip(names, rows)}
@@ -153,8 +172,12 @@ def main():
     ap.add_argument("--shadow", action="store_true",
                     help="one run per scene: the first solver runs the scene, the others solve its problems as shadows "
                          "(times: each solver's thread CPU time in solve(); --cpu and --stage-cpu do not apply)")
+    ap.add_argument("--from-solve", type=int, default=1, metavar="K",
+                    help="with --shadow: leave each run's first K - 1 solves (its cold start) out of every solver's time")
     ap.add_argument("--out", default=os.path.join(REPO, "build", "bench_scenes"))
     a = ap.parse_args()
+    if a.from_solve > 1 and not a.shadow:
+        ap.error("--from-solve needs --shadow (the per-solve times come from the shadows' trace)")
     moreau = os.path.abspath(a.moreau)
     all_scenes = scenes(a.steps)
     names = [n for n in a.only or list(all_scenes) if n not in a.skip]
@@ -165,14 +188,15 @@ def main():
     hdr = f"{'scene':24s} {'tol':>7s} {'steps':>5s} " + " ".join(f"{s + ' ms':>12s}" for s in a.solvers) + \
           f" {'best member':>12s} {'auto/best':>9s}  misses"
     if a.shadow:
-        print(f"one realisation per scene: {a.solvers[0]}'s run; every solver on its problems (thread CPU ms per step)")
+        print(f"one realisation per scene: {a.solvers[0]}'s run; every solver on its problems (thread CPU ms per step"
+              + (f", solves {a.from_solve} on)" if a.from_solve > 1 else ")"))
     print(hdr, flush=True)
     with tempfile.TemporaryDirectory() as tmp:
         for name in names:
             results = {s: [] for s in a.solvers}
             for _ in range(a.repeat):  # interleaved: each round runs every solver once
                 if a.shadow:
-                    one = run_shadow(moreau, all_scenes[name], a.solvers, a.steps, tmp, a.tolerance, a.timeout)
+                    one = run_shadow(moreau, all_scenes[name], a.solvers, a.steps, tmp, a.tolerance, a.timeout, a.from_solve)
                     for sv in a.solvers:
                         results[sv].append(one[sv])
                     continue
