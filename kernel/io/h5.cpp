@@ -30,6 +30,31 @@ std::size_t value_count(hid_t space, std::size_t value_size, const std::string& 
   return static_cast<std::size_t>(n);
 }
 
+/// The transfer of `n` variable-length strings. They are always converted (memory pointers
+/// <-> the file's heap references), and HDF5 1.10 allocates and zeroes a conversion and a
+/// background buffer of the transfer's buffer size at every H5Dwrite/H5Dread that converts:
+/// 1 MiB each by default, which made a frame's few strings (analyses' column names) cost
+/// more than all its numbers (page faults and memset). Sized to the data instead (the next
+/// power of two of 32 bytes a string, more than either side's element: a pointer, a 16-byte
+/// heap reference), at most the default, beyond which HDF5 converts in several passes as
+/// it always did. One property list per size, made once: making one costs as much as the
+/// small write itself. H5P_DEFAULT should it not be made.
+hid_t strings_transfer(std::size_t n) {
+  constexpr int smallest = 9, largest = 20;  // 512 B .. 1 MiB
+  static hid_t lists[largest + 1] = {};
+  int k = smallest;
+  while (k < largest && (std::size_t{1} << k) < 32 * n) ++k;
+  hid_t& dxpl = lists[k];
+  if (dxpl > 0 && H5Iis_valid(dxpl) > 0) return dxpl;
+  dxpl = H5Pcreate(H5P_DATASET_XFER);
+  if (dxpl < 0 || H5Pset_buffer(dxpl, std::size_t{1} << k, nullptr, nullptr) < 0) {
+    if (dxpl >= 0) H5Pclose(dxpl);
+    dxpl = 0;
+    return H5P_DEFAULT;
+  }
+  return dxpl;
+}
+
 /// An attribute must hold one value: reading an array into one would overrun it.
 void require_one_value(hid_t attr, const std::string& name, const std::string& file, const std::string& path) {
   Id sp = space(H5Aget_space(attr));
@@ -70,11 +95,43 @@ herr_t find_errno_text(unsigned, const H5E_error2_t* e, void* out) {
 
 namespace {
 // The core driver's memory, through these callbacks so that the final image is ours.
-void* image_malloc(std::size_t n, H5FD_file_image_op_t, void*) { return std::malloc(n); }
+//
+// The driver grows a file by its increment at a time and zeroes each new piece. A
+// megabyte (as before) made every frame file, of tens of kB, zero and fault in a megabyte
+// of fresh memory: a third of a frame's cost on a 600-body scene. With a small increment
+// the driver asks for memory often, so the block grows geometrically here (the driver
+// still zeroes only what it uses): a frame of many megabytes is not copied at every step.
+// Neither changes a byte of the file.
+constexpr std::size_t core_increment = std::size_t{1} << 16;
+
+void* image_malloc(std::size_t n, H5FD_file_image_op_t, void* udata) {
+  auto* image = static_cast<MemoryFile::Image*>(udata);
+  void* p = std::malloc(n);
+  if (p && !image->block) {
+    image->block = p;
+    image->capacity = n;
+  }
+  return p;
+}
 void* image_memcpy(void* d, const void* s, std::size_t n, H5FD_file_image_op_t, void*) { return std::memcpy(d, s, n); }
-void* image_realloc(void* p, std::size_t n, H5FD_file_image_op_t, void*) { return std::realloc(p, n); }
+void* image_realloc(void* p, std::size_t n, H5FD_file_image_op_t, void* udata) {
+  auto* image = static_cast<MemoryFile::Image*>(udata);
+  if (!p || p != image->block) return std::realloc(p, n);
+  if (n <= image->capacity) return p;
+  const std::size_t capacity = std::max(n, 2 * image->capacity);
+  void* q = std::realloc(p, capacity);
+  if (q) {
+    image->block = q;
+    image->capacity = capacity;
+  }
+  return q;
+}
 herr_t image_free(void* p, H5FD_file_image_op_t op, void* udata) {
   auto* image = static_cast<MemoryFile::Image*>(udata);
+  if (p && p == image->block) {
+    image->block = nullptr;
+    image->capacity = 0;
+  }
   if (op == H5FD_FILE_IMAGE_OP_FILE_CLOSE && image->keep && !image->bytes) image->bytes = static_cast<char*>(p);
   else std::free(p);
   return 0;
@@ -88,7 +145,7 @@ MemoryFile::Image::~Image() { std::free(bytes); }
 MemoryFile::MemoryFile(const std::string& name) : image_(std::make_unique<Image>()) {
   quiet();
   Id fapl = file_access();
-  H5Pset_fapl_core(fapl.get(), 1 << 20, /*backing_store=*/0);
+  H5Pset_fapl_core(fapl.get(), core_increment, /*backing_store=*/0);
   H5FD_file_image_callbacks_t callbacks{image_malloc, image_memcpy, image_realloc, image_free,
                                         udata_copy,   udata_free,   image_.get()};
   H5Pset_file_image_callbacks(fapl.get(), &callbacks);
@@ -98,6 +155,13 @@ MemoryFile::MemoryFile(const std::string& name) : image_(std::make_unique<Image>
 Id create_on_disk(const std::string& path) {
   quiet();
   return file(H5Fcreate(path.c_str(), H5F_ACC_TRUNC, H5P_DEFAULT, file_access().get()));
+}
+
+Id open_whole(const std::string& path) {
+  quiet();
+  Id fapl = plist(H5Pcreate(H5P_FILE_ACCESS));
+  H5Pset_fapl_core(fapl.get(), core_increment, /*backing_store=*/0);
+  return file(H5Fopen(path.c_str(), H5F_ACC_RDONLY, fapl.get()));
 }
 
 std::string last_os_error() {
@@ -193,7 +257,8 @@ void write_strings(hid_t where, const std::string& name, const std::vector<std::
   if (!ds) throw RunError("HDF5 write failed: dataset " + name);
   std::vector<const char*> ptrs;
   for (const auto& s : strings) ptrs.push_back(s.c_str());
-  if (!ptrs.empty()) check(H5Dwrite(ds.get(), t.get(), H5S_ALL, H5S_ALL, H5P_DEFAULT, ptrs.data()), name);
+  if (ptrs.empty()) return;
+  check(H5Dwrite(ds.get(), t.get(), H5S_ALL, H5S_ALL, strings_transfer(ptrs.size()), ptrs.data()), name);
 }
 
 static void attribute(hid_t where, const std::string& name, hid_t file_type, hid_t mem_type, const void* value) {
@@ -317,7 +382,7 @@ std::vector<std::string> read_strings(hid_t where, const std::string& path, cons
   H5Tset_size(t.get(), H5T_VARIABLE);
   H5Tset_cset(t.get(), H5T_CSET_UTF8);
   std::vector<char*> ptrs(n, nullptr);
-  if (n > 0 && H5Dread(ds.get(), t.get(), H5S_ALL, H5S_ALL, H5P_DEFAULT, ptrs.data()) < 0)
+  if (n > 0 && H5Dread(ds.get(), t.get(), H5S_ALL, H5S_ALL, strings_transfer(n), ptrs.data()) < 0)
     throw InputError(path, "cannot read the names", file);
   std::vector<std::string> out;
   for (char* p : ptrs) {

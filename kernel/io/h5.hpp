@@ -74,6 +74,8 @@ class MemoryFile {
   struct Image {
     char* bytes = nullptr;
     bool keep = false;  ///< set just before the close that save() makes
+    void* block = nullptr;      ///< the driver's memory while the file is open
+    std::size_t capacity = 0;   ///< its size, of which the driver uses a part
     ~Image();
   };
 
@@ -87,6 +89,9 @@ Id create_on_disk(const std::string& path);
 /// HDF5 could not write everything out. The library is then left in a state where
 /// nothing more may be done with that file: callers remove it and move on.
 void close_on_disk(Id& file, const std::string& path);
+/// An existing small file opened read-only, read into memory in one read (the core driver)
+/// rather than block by block as HDF5 needs them: a frame file while the output is gathered.
+Id open_whole(const std::string& path);
 /// The OS's reason for the last HDF5 call that failed on a system call (the errno text
 /// HDF5 records), or "" when it recorded none.
 std::string last_os_error();

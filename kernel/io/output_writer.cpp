@@ -325,7 +325,8 @@ struct OutputWriter::Impl {
       const std::string name = frame_name(fr.step);
       herr_t rc;
       if (gather) {
-        h5::Id src = h5::file(H5Fopen(frame_file(fr.step).c_str(), H5F_ACC_RDONLY, H5P_DEFAULT));
+        // Read in one go: block by block (pread per metadata block) was a sixth of the gather.
+        h5::Id src = h5::open_whole(frame_file(fr.step));
         rc = src ? H5Ocopy(src.get(), "frame", g.get(), name.c_str(), H5P_DEFAULT, H5P_DEFAULT) : -1;
       } else {
         rc = H5Lcreate_external(frame_link(fr.step).c_str(), "/frame", g.get(), name.c_str(), H5P_DEFAULT, H5P_DEFAULT);
