@@ -213,6 +213,18 @@ void close_on_disk(Id& f, const std::string& path) {
   }
 }
 
+hid_t group_creation() {
+  static hid_t gcpl = -1;
+  if (gcpl >= 0 && H5Iis_valid(gcpl) > 0) return gcpl;
+  gcpl = H5Pcreate(H5P_GROUP_CREATE);
+  if (gcpl < 0 || H5Pset_link_phase_change(gcpl, 64, 48) < 0) {
+    if (gcpl >= 0) H5Pclose(gcpl);
+    gcpl = -1;
+    return H5P_DEFAULT;
+  }
+  return gcpl;
+}
+
 void write_doubles(hid_t where, const std::string& name, const double* data, hsize_t rows, hsize_t cols) {
   const hsize_t dims[2] = {rows, cols};
   Id sp = space(H5Screate_simple(cols == 0 ? 1 : 2, dims, nullptr));

@@ -122,7 +122,7 @@ struct Column {
 /// Group `name` of `where`, created if missing.
 h5::Id group_of(hid_t where, const std::string& name) {
   if (h5::exists(where, name)) return h5::group(H5Gopen2(where, name.c_str(), H5P_DEFAULT));
-  h5::Id g = h5::group(H5Gcreate2(where, name.c_str(), H5P_DEFAULT, H5P_DEFAULT, H5P_DEFAULT));
+  h5::Id g = h5::group(H5Gcreate2(where, name.c_str(), H5P_DEFAULT, h5::group_creation(), H5P_DEFAULT));
   if (!g) throw RunError("HDF5 write failed: group " + name);
   return g;
 }
@@ -254,7 +254,7 @@ struct OutputWriter::Impl {
       for (int k = 0; k < d; ++k) offset.push_back(c.offset[k]);
       for (int k = 0; k < (d == 2 ? 1 : 4); ++k) rotation.push_back(c.rotation[k]);
     }
-    h5::Id g = h5::group(H5Gcreate2(root, "contactors", H5P_DEFAULT, H5P_DEFAULT, H5P_DEFAULT));
+    h5::Id g = h5::group(H5Gcreate2(root, "contactors", H5P_DEFAULT, h5::group_creation(), H5P_DEFAULT));
     h5::write_int32(g.get(), "body", body.data(), cs.size(), 0);
     h5::write_int32(g.get(), "node", node.data(), cs.size(), 0);
     h5::write_strings(g.get(), "shape", shape);
@@ -560,7 +560,7 @@ h5::Id make_groups(hid_t where, const std::string& path) {
     if (!part.empty()) {
       const bool there = H5Lexists(g.get(), part.c_str(), H5P_DEFAULT) > 0;
       h5::Id next = h5::group(there ? H5Gopen2(g.get(), part.c_str(), H5P_DEFAULT)
-                                    : H5Gcreate2(g.get(), part.c_str(), H5P_DEFAULT, H5P_DEFAULT, H5P_DEFAULT));
+                                    : H5Gcreate2(g.get(), part.c_str(), H5P_DEFAULT, h5::group_creation(), H5P_DEFAULT));
       if (!next) throw RunError("HDF5 write failed: group " + path);
       g = std::move(next);
     }
@@ -619,7 +619,7 @@ void OutputWriter::write_frame_file(long step, double time, const State& state, 
   std::size_t contacts = 0;
   bool with_contacts = false;
   {
-    h5::Id g = h5::group(H5Gcreate2(f.get(), "frame", H5P_DEFAULT, H5P_DEFAULT, H5P_DEFAULT));
+    h5::Id g = h5::group(H5Gcreate2(f.get(), "frame", H5P_DEFAULT, h5::group_creation(), H5P_DEFAULT));
     h5::attribute_double(g.get(), "time", time);
     h5::attribute_long(g.get(), "step", step);
     // Every set's frame fields in <set>/ (the end-of-step values: depths were swapped).
