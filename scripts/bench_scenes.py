@@ -148,6 +148,8 @@ def run_shadow(moreau, scene, names, steps, tmp, tolerance=None, timeout=None, f
                 kept[m.group(1)] = (t + float(m.group(3)), c + 1)
         for r in rows:
             t, c = kept.get(r["label"], (0.0, 0))
+            if not c and r["solves"] >= from_solve:
+                raise SystemExit(f"--from-solve: no trace line for solver {r['label']!r} (labels in the trace: {sorted(kept)})")
             # per kept step: the kept solves' time over the steps they make at the run's solves per step
             r["cpu_seconds"] = t / c * r["solves"] if c else 0.0
     return {sv: {"solve": r["cpu_seconds"] / n, "steps": n, "tol": tol, "misses": r["misses"], "worst": r["worst_error"],
